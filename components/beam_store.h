@@ -1,0 +1,45 @@
+// Beam store: the reference data of every beam element at its axial integration points.
+//
+// At an axial point, the Green-Lagrange strain of the section is a polynomial in the section
+// coordinates (xi1, xi2) whose 15 coefficients e_k (the generalised strains, see
+// systems/beam_section.h) are each c_k (v_a . v_b - V_a . V_b) for two interpolated vectors.
+// Saint Venant-Kirchhoff makes the section's energy a constant quadratic form in them:
+//   energy of the element = sum over its points p of 1/2 e_p^T D_p e_p   (N mm),
+// so the total-Lagrangian element needs, per point, only D_p (axial weight, section
+// integration, material, locking cure and stiffness factors all folded in) and the reference
+// products eRef_p. Filled once per scene by buildBeamReference; no logic here.
+#pragma once
+
+#include "components/fibres.h"
+
+#include <Eigen/StdVector>
+
+namespace fibra {
+
+constexpr int kGenStrains = 15;
+using Mat15 = Eigen::Matrix<double, kGenStrains, kGenStrains>;
+using Vec15 = Eigen::Matrix<double, kGenStrains, 1>;
+
+// How a fibre's elements are integrated.
+enum class AxialRule { Reduced, Full };         // order or order+1 Gauss points along the axis
+enum class SectionRule { Moments, Quadrature };  // exact disc moments at the centroid metric,
+                                                 // or a polar rule with the pointwise metric
+struct BeamIntegration {
+  AxialRule axial = AxialRule::Reduced;
+  SectionRule section = SectionRule::Moments;
+  int rings = 3;    // Quadrature: radial points (Gauss in r^2)
+  int sectors = 8;  // Quadrature: equally spaced angles
+};
+
+struct BeamStore {
+  // --- per element ---
+  std::vector<Index> firstPoint;  // first axial integration point of the element
+  std::vector<int> pointCount;    // axial integration points of the element
+
+  // --- per axial integration point ---
+  std::vector<double> z;  // element parameter in [-1, 1]
+  std::vector<Mat15, Eigen::aligned_allocator<Mat15>> D;     // section stiffness, weights folded in
+  std::vector<Vec15, Eigen::aligned_allocator<Vec15>> eRef;  // c_k V_a . V_b of the reference
+};
+
+}  // namespace fibra

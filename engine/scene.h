@@ -1,0 +1,158 @@
+// The scene description: what a user asks fibra to solve. Plain Def structs with defaults; a
+// scene file (docs/SCENE.md) is parsed into a SceneDef, and an embedding program may also fill
+// one directly. Units are consistent throughout: mm, N, MPa (so stresses in N/mm^2, moments in
+// N mm, energies in N mm); angles in radians.
+#pragma once
+
+#include "components/beam_store.h"
+
+#include <Eigen/Core>
+#include <array>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fibra {
+
+// A scene that cannot be built: `what()` names the field path and what is wrong.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A piecewise-linear function of pseudo-time: value(t) interpolates the points (t_i, v_i),
+// t strictly increasing, and is constant beyond the first and last points.
+struct TableDef {
+  std::vector<double> t;  // pseudo-time
+  std::vector<double> v;  // value (unit of what it scales)
+};
+
+struct MaterialDef {
+  std::string name;
+  double youngModulus = 0;    // E, MPa
+  double poissonRatio = 0.3;  // nu
+  double bendingFactor = 1;   // scales EI (paper Table 1: 0.12)
+  double torsionFactor = 1;   // scales GJ
+};
+
+enum class GeometryKind { Line, Polyline, Helix };
+
+struct GeometryDef {
+  GeometryKind kind = GeometryKind::Line;
+  std::vector<Vec3> points;  // Line: start and end; Polyline: the vertices (mm)
+  // Optional hint for the first director G1 at the fibre's start (projected normal to the
+  // tangent); when absent, a direction normal to the tangent is chosen. Line and Polyline only:
+  // the directors are transported along the centreline without twist.
+  Vec3 director = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  // Helix: x(phi) = origin + r (cos phi e1 + sin phi e2) + pitch phi / (2 pi) axis, phi from
+  // phase over `turns` turns (negative turns: left-handed); e1 normal to the axis. G1 points
+  // radially outwards, G2 = t x G1.
+  Vec3 origin = Vec3::Zero();   // a point of the helix axis, mm
+  Vec3 axis = Vec3::UnitZ();    // helix axis direction
+  double helixRadius = 0;       // mm
+  double pitch = 0;             // axial advance per turn, mm
+  double turns = 0;             // number of turns (sign: handedness)
+  double phase = 0;             // starting angle, rad
+};
+
+struct FibreDef {
+  std::string name;
+  std::string material;  // a MaterialDef name
+  double radius = 0;     // cross-section radius, mm
+  int elements = 0;      // number of elements
+  int order = 2;         // 1 linear, 2 quadratic
+  GeometryDef geometry;
+  BeamIntegration integration;
+};
+
+// A named set of nodes. Every fibre F also has the groups "F.start", "F.end" and "F.all".
+struct GroupDef {
+  std::string name;
+  std::string fibre;
+  std::vector<int> nodes;  // node indices within the fibre, 0-based
+};
+
+// Held DOFs of a group's nodes. Targets follow the reference and the motion:
+//   x0 = c + R(t) (X0 - c) + d(t),  g_a = R(t) G_a,
+// R(t) the rotation by angle(t) about `axis` through centre c, d(t) = displacement * table(t).
+enum class BcKind { Clamp, Pin, Fix };
+enum Dof { X, Y, Z, G1X, G1Y, G1Z, G2X, G2Y, G2Z };
+
+struct BcDef {
+  BcKind kind = BcKind::Clamp;  // Clamp: all 9 DOFs; Pin: x0; Fix: the `dofs` listed
+  std::string group;
+  std::array<bool, 9> dofs{};            // Fix only
+  Vec3 displacement = Vec3::Zero();      // mm, scaled by displacementTable
+  TableDef displacementTable{{0.0, 1.0}, {0.0, 1.0}};
+  bool rotates = false;
+  Vec3 axis = Vec3::UnitZ();             // rotation axis (normalised when used)
+  Vec3 centre = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // default: node's X0
+  TableDef angle;                        // rad
+};
+
+// Dead loads on each node of a group. A force F (N) adds -F.x0 to the energy. A moment M
+// (N mm) is a torque |M| about the fixed axis M/|M|: it adds -|M| phi, phi the rotation of the
+// section about that axis measured on the directors' projections (conservative, symmetric).
+enum class LoadKind { Force, Moment };
+
+struct LoadDef {
+  LoadKind kind = LoadKind::Force;
+  std::string group;
+  Vec3 vector = Vec3::Zero();  // N or N mm, per node, scaled by table
+  TableDef table{{0.0, 1.0}, {0.0, 1.0}};
+};
+
+struct StepDef {
+  std::string name;
+  double endTime = 1;              // pseudo-time at the end of the step (steps follow each other)
+  int increments = 1;              // equal increments of pseudo-time
+  int maxIterations = 30;          // Newton iterations per increment before a cutback
+  double forceTolerance = 1e-8;    // |r| <= tol * max(|f_ext|, |reactions|, |f_int| scale)
+  double incrementTolerance = 1e-10;  // |dq| <= tol * max(1, |q - q_ref|)  (mm)
+  int maxCutbacks = 8;             // bisections of an increment before the step fails
+  int outputEvery = 1;             // write output every n converged increments (and the last)
+};
+
+struct ProbeDef {
+  std::string name;
+  std::string fibre;
+  int node = 0;  // node index within the fibre
+};
+
+struct OutputDef {
+  bool vtu = true;                      // ParaView series
+  bool history = true;                  // CSV history
+  bool finalState = true;               // every node's x0, g1, g2 at the end
+  Vec3 momentPoint = Vec3::Zero();      // reactions' moments are taken about this point, mm
+  std::vector<ProbeDef> probes;
+};
+
+// Contact detection parameters (paper section 3). NaN means "derive the default" (see
+// docs/SCENE.md for the rules, which use the radii and element lengths of the pair).
+struct ContactDef {
+  bool enabled = false;
+  double proximityDistance = std::numeric_limits<double>::quiet_NaN();  // Delta_prox, mm
+  double testPointSpacing = std::numeric_limits<double>::quiet_NaN();   // l_zp, mm
+  double thetaCross = std::numeric_limits<double>::quiet_NaN();         // rad
+  double thetaParallel = std::numeric_limits<double>::quiet_NaN();      // rad
+  bool selfContact = false;                                            // contact on one fibre
+  double selfContactSeparation = std::numeric_limits<double>::quiet_NaN();  // min |s1 - s2|, mm
+  double skin = std::numeric_limits<double>::quiet_NaN();  // broadphase rebuild distance, mm
+};
+
+struct SceneDef {
+  std::string units = "mm-N-MPa";
+  std::vector<MaterialDef> materials;
+  std::vector<FibreDef> fibres;
+  std::vector<GroupDef> groups;
+  std::vector<BcDef> bcs;
+  std::vector<LoadDef> loads;
+  std::vector<StepDef> steps;
+  ContactDef contact;
+  OutputDef output;
+};
+
+// value of a table at pseudo-time t (constant beyond its ends; 0 for an empty table).
+double tableValue(const TableDef& table, double t);
+
+}  // namespace fibra

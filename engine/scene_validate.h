@@ -1,0 +1,12 @@
+// Semantic validation of a SceneDef, shared by the scene-file loader and World's constructor:
+// every name resolves, every number is in range, every table is monotone. Throws SceneError
+// whose message starts with the field path (e.g. "fibres[2].radius: must be > 0, got -1").
+#pragma once
+
+#include "engine/scene.h"
+
+namespace fibra {
+
+void validateScene(const SceneDef& scene);
+
+}  // namespace fibra
