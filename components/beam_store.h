@@ -13,6 +13,7 @@
 #include "components/fibres.h"
 
 #include <Eigen/StdVector>
+#include <array>
 
 namespace fibra {
 
@@ -32,6 +33,9 @@ struct BeamIntegration {
 };
 
 struct BeamStore {
+  // --- per colour: elements that share no node, assembled in parallel without conflicts ---
+  std::array<std::vector<Index>, 2> colours;  // even / odd element index within each fibre
+
   // --- per element ---
   std::vector<Index> firstPoint;  // first axial integration point of the element
   std::vector<int> pointCount;    // axial integration points of the element

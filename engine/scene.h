@@ -107,9 +107,10 @@ struct StepDef {
   double endTime = 1;              // pseudo-time at the end of the step (steps follow each other)
   int increments = 1;              // equal increments of pseudo-time
   int maxIterations = 30;          // Newton iterations per increment before a cutback
-  double forceTolerance = 1e-8;    // |r| <= tol * max(|f_ext|, |reactions|, |f_int| scale)
-  double incrementTolerance = 1e-10;  // |dq| <= tol * max(1, |q - q_ref|)  (mm)
+  double forceTolerance = 1e-8;    // |r_free| <= tol * max(|f_ext|, |reactions|, 1e-4 E A)
+  double incrementTolerance = 1e-10;  // remaining correction: |dx0| <= tol * R_max, |dg| <= tol
   int maxCutbacks = 8;             // bisections of an increment before the step fails
+  bool lineSearch = false;         // energy-slope line search in Newton (systems/newton.h)
   int outputEvery = 1;             // write output every n converged increments (and the last)
 };
 

@@ -187,8 +187,10 @@ void buildBeamReference(const FibreStore& fs, const MaterialStore& mats,
   beams.firstPoint.resize(ne);
   beams.pointCount.resize(ne);
   Index total = 0;
+  for (auto& c : beams.colours) c.clear();
   for (Index e = 0; e < ne; ++e) {
     const Index f = fs.elementFibre[e];
+    beams.colours[(e - fs.firstElement[f]) % 2].push_back(e);
     beams.firstPoint[e] = total;
     beams.pointCount[e] = axialPoints(fs.order[f], integration[f].axial);
     total += beams.pointCount[e];

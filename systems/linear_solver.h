@@ -1,0 +1,44 @@
+// Linear solver system: solves K dq = -r on the free DOFs.
+//
+// Reads  LinearSystem (K, revision, symmetric). Owns its factorisation; no shared state.
+// Symmetric K: CHOLMOD supernodal LL^T; the symbolic analysis (ordering, supernodes) is redone
+//   only when the pattern revision changes, the numeric factorisation every call. A tangent
+//   that is not positive definite (unstable equilibria, buckling) falls back to CHOLMOD's
+//   simplicial LDL^T for that call, and the report says so.
+// Non-symmetric K (friction): UMFPACK LU with the same analysis reuse.
+// Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). BLAS threads are
+// a process setting left to the program (the `fibra` program matches them to --threads).
+#pragma once
+
+#include "components/linear_system.h"
+
+#include <memory>
+#include <string>
+
+namespace fibra {
+
+struct LinearSolveStats {
+  double analyse = 0, factorise = 0, solve = 0;  // seconds, accumulated
+  int analyses = 0, factorisations = 0, fallbacks = 0;
+};
+
+class LinearSolver {
+ public:
+  LinearSolver();
+  ~LinearSolver();
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  // Factorises ls.K; false (with a message) if it is singular.
+  bool factorise(const LinearSystem& ls, std::string& message);
+  // x = K^-1 b (free DOFs); after a successful factorise.
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  const LinearSolveStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fibra

@@ -1,0 +1,143 @@
+#include "systems/newton.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace fibra {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+struct Context {
+  Eigen::VectorXd& q;
+  LinearSystem& ls;
+  LinearSolver& solver;
+  const NewtonSettings& settings;
+  const NewtonCallbacks& cb;
+  StepTimings& timings;
+  Eigen::VectorXd rf, dq, dqBar;
+
+  // Weight of DOF d in norms: director forces (N mm) and increments are divided / multiplied
+  // by the length scale so that every component is a force (N) or a length ratio.
+  double forceWeight(Index d) const { return d % kNodeDofs < 3 ? 1.0 : 1 / settings.lengthScale; }
+
+  // Assembles at the current q; returns |r_f| / F_ref, F_ref = max(|f_ext|, |r_held|, floor).
+  double assemble(bool withTangent) {
+    const auto t0 = Clock::now();
+    cb.assemble(withTangent);
+    timings.assemble += since(t0);
+    rf.resize(ls.freeCount);
+    for (Index i = 0; i < ls.freeCount; ++i) rf(i) = ls.r(ls.dofOf[i]);
+    double free2 = 0, all2 = 0, ext2 = 0;
+    for (Index d = 0; d < ls.r.size(); ++d) {
+      const double w2 = std::pow(forceWeight(d), 2);
+      all2 += w2 * ls.r(d) * ls.r(d);
+      ext2 += w2 * ls.fext(d) * ls.fext(d);
+      if (ls.equation[d] >= 0) free2 += w2 * ls.r(d) * ls.r(d);
+    }
+    const double ref = std::max({std::sqrt(ext2), std::sqrt(std::max(all2 - free2, 0.0)), settings.forceFloor});
+    return std::sqrt(free2) / ref;
+  }
+
+  // max |v_i| over free DOFs, positions divided by the length scale.
+  double scaledMax(const Eigen::VectorXd& v) const {
+    double m = 0;
+    for (Index i = 0; i < v.size(); ++i)
+      m = std::max(m, std::abs(v(i)) * (ls.dofOf[i] % kNodeDofs < 3 ? 1 / settings.lengthScale : 1.0));
+    return m;
+  }
+
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+    const auto t0 = Clock::now();
+    solver.solve(b, x);
+    timings.solve += since(t0);
+  }
+
+  double moveTo(const Eigen::VectorXd& q0, double a, bool withTangent) {
+    q = q0;
+    for (Index i = 0; i < ls.freeCount; ++i) q(ls.dofOf[i]) += a * dq(i);
+    return assemble(withTangent);
+  }
+
+  // Step length: the full Newton step, halved while the residual is not finite; with the
+  // optional line search, regula falsi (Illinois) on the energy slope s(a) = dq . r_f(q0 + a dq)
+  // until |s| <= 0.5 |s(0)|, at most 6 trials. Leaves ls assembled with the tangent at q.
+  std::pair<double, double> step() {
+    const Eigen::VectorXd q0 = q;
+    const double s0 = dq.dot(rf);
+    double a = 1, res = moveTo(q0, a, true);
+    for (int k = 0; k < settings.maxHalvings && !std::isfinite(res); ++k) res = moveTo(q0, a *= 0.5, true);
+    double s = dq.dot(rf);
+    if (!settings.lineSearch || !std::isfinite(res) || s0 >= 0 || s <= 0.5 * std::abs(s0)) return {a, res};
+    double lo = 0, slo = s0, hi = a, shi = s;
+    for (int k = 0, side = 0; k < 6; ++k) {
+      a = std::clamp((lo * shi - hi * slo) / (shi - slo), lo + 0.02 * (hi - lo), hi - 0.02 * (hi - lo));
+      res = moveTo(q0, a, false);
+      s = dq.dot(rf);
+      if (std::abs(s) <= 0.5 * std::abs(s0)) break;
+      if (s > 0) {
+        hi = a, shi = s, slo *= side == -1 ? 0.5 : 1, side = -1;
+      } else {
+        lo = a, slo = s, shi *= side == 1 ? 0.5 : 1, side = 1;
+      }
+    }
+    return {a, assemble(true)};
+  }
+};
+
+}  // namespace
+
+NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
+                         const NewtonSettings& settings, const NewtonCallbacks& cb,
+                         StepTimings& timings) {
+  Context c{q, ls, solver, settings, cb, timings, {}, {}, {}};
+  NewtonResult res;
+  res.residual = c.assemble(true);
+  if (res.residual <= settings.forceTolerance) {
+    res.outcome = NewtonOutcome::Converged;
+    return res;
+  }
+  const double first = res.residual;
+  for (int it = 1; it <= settings.maxIterations; ++it) {
+    if (cb.cancel && cb.cancel()) {
+      res.outcome = NewtonOutcome::Cancelled;
+      res.message = "cancelled";
+      return res;
+    }
+    const auto t0 = Clock::now();
+    const bool ok = solver.factorise(ls, res.message);
+    timings.factorise += since(t0);
+    if (!ok) return res;
+    c.solve(-c.rf, c.dq);
+
+    const auto [alpha, residual] = c.step();
+    res.iterations = it;
+    res.residual = residual;
+    res.history.push_back({residual, alpha * c.scaledMax(c.dq), alpha});
+    if (cb.progress) cb.progress(it, residual);
+    if (!std::isfinite(residual)) {
+      res.message = "non-finite residual at iteration " + std::to_string(it);
+      return res;
+    }
+    if (residual <= settings.forceTolerance) {
+      c.solve(-c.rf, c.dqBar);  // the correction still needed, with the factorisation at hand
+      if (c.scaledMax(c.dqBar) <= settings.incrementTolerance) {
+        res.outcome = NewtonOutcome::Converged;
+        res.message.clear();
+        return res;
+      }
+    }
+    if (residual > settings.divergence * first) {
+      res.message = "diverging: residual grew from " + std::to_string(first) + " to " +
+                    std::to_string(residual);
+      return res;
+    }
+  }
+  res.message = "no convergence in " + std::to_string(settings.maxIterations) +
+                " iterations (residual " + std::to_string(res.residual) + ")";
+  return res;
+}
+
+}  // namespace fibra

@@ -1,0 +1,64 @@
+// Newton system: Newton-Raphson with line search on the free DOFs, for a fixed set of contact
+// elements and normals (paper section 4.4, third loop).
+//
+// Reads/writes the state q (free DOFs), LinearSystem (through the assemble callback, which
+// fills r, fext and, when asked, K at the current q), and the LinearSolver.
+//
+// Iteration: K dq = -r_f; q += alpha dq with alpha = 1, halved only while the residual is not
+// finite. Damping by the energy slope or the residual norm is measured to hurt here (5 against
+// 8 Newton iterations for a small cantilever load, 8 against 25 for a 1/20 roll-up increment:
+// the straight Newton line leaves the rotation manifold to second order, and the stiff axial
+// and director-stretch modes then dominate both merits although the full step is right), so
+// the energy line search (regula falsi on s(a) = dq . r_f(q + a dq), |s| <= 0.5 |s(0)|) is an
+// option, off by default; cutbacks of the increment are the globalisation.
+// Norms: director forces (N mm) are divided by lengthScale, position increments too, so every
+// component reads as a force (N) or a dimensionless increment.
+// Converged when, after an iteration,
+//   |r_f| <= forceTolerance * F_ref, F_ref = max(|f_ext|, |reactions|, forceFloor), and
+//   max |dq_bar| <= incrementTolerance, dq_bar = -K^-1 r_f the correction the state still
+//   needs, by one back-substitution with the factorisation at hand (no extra factorisation).
+// forceFloor keeps F_ref above the residual's roundoff (the world uses 1e-4 E A).
+// Fails (never silently): non-finite residual, singular tangent, residual growing beyond
+// `divergence` times its first value, iteration limit, or cancellation.
+#pragma once
+
+#include "components/linear_system.h"
+#include "engine/world.h"
+#include "systems/linear_solver.h"
+
+#include <functional>
+
+namespace fibra {
+
+struct NewtonSettings {
+  int maxIterations = 30;
+  double forceTolerance = 1e-8;       // relative to F_ref
+  double incrementTolerance = 1e-10;  // relative to lengthScale (positions) or absolute (directors)
+  double forceFloor = 1e-12;          // N: F_ref floor for unloaded states
+  double lengthScale = 1;             // mm
+  bool lineSearch = false;            // energy-slope line search (see above)
+  int maxHalvings = 5;                // halvings of a step with a non-finite residual
+  double divergence = 1e6;            // residual growth that aborts the attempt
+};
+
+enum class NewtonOutcome { Converged, Failed, Cancelled };
+
+struct NewtonResult {
+  NewtonOutcome outcome = NewtonOutcome::Failed;
+  int iterations = 0;
+  double residual = 0;  // final relative residual
+  std::vector<NewtonRecord> history;
+  std::string message;
+};
+
+struct NewtonCallbacks {
+  std::function<void(bool withTangent)> assemble;  // fill ls at the current q
+  std::function<void(int iteration, double residual)> progress;
+  std::function<bool()> cancel;
+};
+
+NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
+                         const NewtonSettings& settings, const NewtonCallbacks& callbacks,
+                         StepTimings& timings);
+
+}  // namespace fibra
