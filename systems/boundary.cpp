@@ -21,45 +21,38 @@ Eigen::Matrix3d rotationOf(const BcDef& bc, double time) {
   return Eigen::AngleAxisd(tableValue(bc.angle, time), bc.axis.normalized()).toRotationMatrix();
 }
 
-// Basis (b1, b2) of the plane normal to unit e.
-std::pair<Vec3, Vec3> planeBasis(const Vec3& e) {
-  Eigen::Index i;
-  e.cwiseAbs().minCoeff(&i);
-  const Vec3 b1 = (Vec3::Unit(i) - e(i) * e).normalized();
-  return {b1, e.cross(b1)};
-}
-
-// Torque |M| about fixed axis e on node n: gradient of -|M| sum_a w_a phi_a into r, Hessian into K.
+// Torque |M| about the fixed axis e on node n: Pi = -|M| phi, phi = atan2(S, C) with
+// C = sum_a u_a . g_a, S = sum_a (e x u_a) . g_a and u_a = G_a - (G_a . e) e: the angle of the
+// planar rotation about e that best maps the reference directors' projections onto the
+// current ones. C and S are linear in g, so dphi = (C dS - S dC) / rho^2 and
+// d2phi = [dC dS] [[2CS, S^2 - C^2], [S^2 - C^2, -2CS]] [dC dS]^T / rho^4, rho^2 = C^2 + S^2.
 void addMoment(const FibreStore& fs, Index n, const Vec3& M, const Eigen::VectorXd& q,
                bool withTangent, LinearSystem& ls) {
   const double m = M.norm();
   if (m == 0) return;
   const Vec3 e = M / m;
-  const auto [b1, b2] = planeBasis(e);
-  double wsum = 0, w[2];
+  const Index d = kNodeDofs * n + 3;  // first director DOF
+  Eigen::Matrix<double, 6, 1> dC, dS;
   for (int a = 0; a < 2; ++a) {
-    const Vec3 G = fs.qRef.segment<3>(kNodeDofs * n + 3 + 3 * a);
-    w[a] = (G - G.dot(e) * e).squaredNorm();
-    wsum += w[a];
+    const Vec3 G = fs.qRef.segment<3>(d + 3 * a);
+    const Vec3 u = G - G.dot(e) * e;
+    dC.segment<3>(3 * a) = u;
+    dS.segment<3>(3 * a) = e.cross(u);
   }
-  for (int a = 0; a < 2; ++a) {
-    const Index d = kNodeDofs * n + 3 + 3 * a;
-    const Vec3 g = q.segment<3>(d);
-    const double x = b1.dot(g), y = b2.dot(g), rho2 = x * x + y * y;
-    const double c = -m * w[a] / wsum;
-    if (rho2 == 0 || c == 0) continue;
-    const Vec3 grad = c * (-y * b1 + x * b2) / rho2;
-    ls.r.segment<3>(d) += grad;
-    ls.fext.segment<3>(d) -= grad;
-    if (!withTangent) continue;
-    Eigen::Matrix<double, 3, 2> B;
-    B << b1, b2;
-    Eigen::Matrix2d H;
-    H << 2 * x * y, y * y - x * x, y * y - x * x, -2 * x * y;
-    const Eigen::Matrix3d Kg = c * B * H * B.transpose() / (rho2 * rho2);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) addEntry(ls, ls.equation[d + i], ls.equation[d + j], Kg(i, j));
-  }
+  const Eigen::Matrix<double, 6, 1> g = q.segment<6>(d);
+  const double C = dC.dot(g), S = dS.dot(g), rho2 = C * C + S * S;
+  if (rho2 == 0) return;
+  const Eigen::Matrix<double, 6, 1> grad = -m * (C * dS - S * dC) / rho2;
+  ls.r.segment<6>(d) += grad;
+  ls.fext.segment<6>(d) -= grad;
+  if (!withTangent) return;
+  Eigen::Matrix<double, 6, 2> B;
+  B << dC, dS;
+  Eigen::Matrix2d H;
+  H << 2 * C * S, S * S - C * C, S * S - C * C, -2 * C * S;
+  const Eigen::Matrix<double, 6, 6> Kg = -m * B * H * B.transpose() / (rho2 * rho2);
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j) addEntry(ls, ls.equation[d + i], ls.equation[d + j], Kg(i, j));
 }
 
 }  // namespace

@@ -6,11 +6,12 @@
 // assembleLoads     reads LoadStore, GroupStore, q; writes LinearSystem fext, r (subtracts
 //                   f_ext) and K (adds the moment loads' stiffness). Serial: loads are few.
 //   Force F on a node:   Pi = -F . x0.
-//   Moment M on a node:  Pi = -|M| sum_a w_a phi_a, phi_a = atan2(b2 . g_a, b1 . g_a) the angle
-//     of director a in the plane normal to e = M/|M| (b1, b2 = e x b1 a basis of that plane),
-//     w_a = |P G_a|^2 / sum_b |P G_b|^2 from the reference directors. A torque about a fixed
-//     axis, conservative: dphi/dg = (-y b1 + x b2)/rho^2, d2phi/d(x,y)^2 =
-//     [[2xy, y^2-x^2], [y^2-x^2, -2xy]]/rho^4 with x = b1.g, y = b2.g, rho^2 = x^2 + y^2.
+//   Moment M on a node:  Pi = -|M| phi, phi the rotation of the section about the fixed axis
+//     e = M/|M|: phi = atan2(S, C), C = sum_a u_a . g_a, S = sum_a (e x u_a) . g_a with
+//     u_a = G_a - (G_a . e) e the reference directors projected normal to e (the planar
+//     rotation about e that best maps the reference projections onto the current ones). A
+//     torque about a fixed axis: conservative, symmetric tangent, smooth even when a director
+//     turns parallel to e.
 // reaction          reads r on a BC's held DOFs: force sum r_x0; moment about p:
 //                   sum (x0 - p) x r_x0 + g1 x r_g1 + g2 x r_g2 (the virtual work of a rigid
 //                   rotation of the held sections).
