@@ -129,7 +129,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
         return res;
       }
     }
-    if (residual > settings.divergence * first) {
+    if (residual > settings.divergence * std::max(first, 1.0)) {
       res.message = "diverging: residual grew from " + std::to_string(first) + " to " +
                     std::to_string(residual);
       return res;
