@@ -5,8 +5,8 @@
 // fills r, fext and, when asked, K at the current q), and the LinearSolver.
 //
 // Iteration: K dq = -r_f; q += alpha dq with alpha = 1, halved only while the residual is not
-// finite. Damping by the energy slope or the residual norm is measured to hurt here (5 against
-// 8 Newton iterations for a small cantilever load, 8 against 25 for a 1/20 roll-up increment:
+// finite. Damping by the energy slope or the residual norm is measured to hurt here (4 against
+// 7 Newton iterations for a small cantilever load, 8 against 24 for a 1/20 roll-up increment:
 // the straight Newton line leaves the rotation manifold to second order, and the stiff axial
 // and director-stretch modes then dominate both merits although the full step is right), so
 // the energy line search (regula falsi on s(a) = dq . r_f(q + a dq), |s| <= 0.5 |s(0)|) is an

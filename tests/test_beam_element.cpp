@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <random>
 
@@ -128,4 +129,34 @@ TEST_CASE("rigid motions give zero energy and force; rotation keeps the energy")
       CHECK(Erot == doctest::Approx(Edef).epsilon(1e-12));
     }
   }
+}
+
+TEST_CASE("reduced integration adds no zero-energy mode: a free fibre has exactly six") {
+  for (auto kind : {GeometryKind::Line, GeometryKind::Helix})
+    for (int order : {1, 2}) {
+      CAPTURE(int(kind));
+      CAPTURE(order);
+      const OneFibre o = makeFibre(kind, order, {AxialRule::Reduced, SectionRule::Moments, 3, 8});
+      const Index n = kNodeDofs * o.fs.nodes();
+      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n, n);
+      for (Index e = 0; e < o.fs.elements(); ++e) {
+        const Index d0 = kNodeDofs * o.fs.elementFirstNode[e];
+        const ElementPoints pts = elementPoints(o.beams, e);
+        if (order == 2) {
+          ElementVector<2> f;
+          ElementMatrix<2> Ke;
+          beamElement<2>(pts, elementDofs<2>(o.fs.qRef, o.fs, e), f, &Ke);
+          K.block<27, 27>(d0, d0) += Ke;
+        } else {
+          ElementVector<1> f;
+          ElementMatrix<1> Ke;
+          beamElement<1>(pts, elementDofs<1>(o.fs.qRef, o.fs, e), f, &Ke);
+          K.block<18, 18>(d0, d0) += Ke;
+        }
+      }
+      const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(K).eigenvalues();
+      const double tol = 1e-9 * ev.maxCoeff();
+      CHECK((ev.array().abs() < tol).count() == 6);
+      CHECK(ev(6) > 1e3 * tol);  // the seventh mode is clearly stiff
+    }
 }
