@@ -1,0 +1,93 @@
+// Contact-friction law of one contact element (paper section 4), as a function of the relative
+// position d = x^I(xi^I) - x^J(xi^J) of its two material particles (or of a fibre particle and
+// a tool point). For fixed particles and a fixed normal, d is linear in the DOFs, so the law's
+// derivative with respect to d is all the element needs.
+//
+//   gap          g = d . N                                               (eq. 11)
+//   normal force R_N = 0                          g > 0
+//                    = k g^2 / (2 p_reg)           -p_reg <= g <= 0      (eq. 12)
+//                    = -k g - k p_reg / 2          g < -p_reg
+//   friction     trial  t = g_rev,0 + P (d - d_0), P = I - N N^T          (eq. 14)
+//                g_rev = t if |t| <= g_max, else g_max t / |t|            (eq. 15, 16)
+//                force on I: -mu R_N g_rev / g_max (at most mu R_N: Coulomb in slip)
+// The force on particle I is f = R_N N - mu R_N g_rev / g_max (on J: -f), so the element adds
+// -f . dd/dq to the residual and -(df/dd) to the tangent in d-space:
+//   df/dd = R_N' N N^T - (mu / g_max) (g_rev R_N' N^T + R_N dg_rev/dd),
+//   dg_rev/dd = P (stick) or (g_max / |t|) (P - u u^T), u = t / |t| (slip).
+// Only g_rev R_N' N^T (the normal force scaling the friction force) is non-symmetric; the
+// symmetrised tangent drops it. Pure functions; no state.
+#pragma once
+
+#include "components/fibres.h"
+
+#include <Eigen/Core>
+
+namespace fibra {
+
+struct ContactLawParams {
+  double penalty = 0;     // k, N/mm (per contact element)
+  double pReg = 0;        // regularisation threshold p_reg, mm
+  double mu = 0;          // friction coefficient (0: frictionless)
+  double gMax = 0;        // reversible slip g_T,max, mm
+};
+
+struct ContactLawState {
+  Vec3 normal = Vec3::Zero();  // N, unit, oriented from J to I
+  Vec3 d0 = Vec3::Zero();      // d at the reference state of the friction increment, mm
+  Vec3 gRev0 = Vec3::Zero();   // reversible slip at that state (in the plane normal to N), mm
+};
+
+struct ContactLawResult {
+  double gap = 0;               // g, mm
+  double normalForce = 0;       // R_N >= 0, N
+  Vec3 gRev = Vec3::Zero();     // reversible slip now, mm
+  bool slip = false;            // |trial| > g_max
+  Vec3 force = Vec3::Zero();    // f on particle I (J gets -f), N
+  Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  // -df/dd, N/mm
+};
+
+// Normal force R_N(g) and dR_N/dg of eq. 12.
+inline void penaltyForce(double g, double k, double pReg, double& R, double& dR) {
+  if (g > 0) {
+    R = dR = 0;
+  } else if (g >= -pReg) {
+    R = k * g * g / (2 * pReg);
+    dR = k * g / pReg;
+  } else {
+    R = -k * g - k * pReg / 2;
+    dR = -k;
+  }
+}
+
+inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
+                                   const ContactLawParams& p, bool symmetrised) {
+  ContactLawResult out;
+  const Vec3& N = s.normal;
+  out.gap = d.dot(N);
+  double dR;
+  penaltyForce(out.gap, p.penalty, p.pReg, out.normalForce, dR);
+  const double R = out.normalForce;
+  out.force = R * N;
+  Eigen::Matrix3d dfdd = dR * N * N.transpose();
+  if (p.mu > 0 && R > 0) {
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - N * N.transpose();
+    const Vec3 trial = s.gRev0 + P * (d - s.d0);
+    const double t = trial.norm();
+    Eigen::Matrix3d dgRev = P;
+    out.gRev = trial;
+    if (t > p.gMax) {
+      out.slip = true;
+      const Vec3 u = trial / t;
+      out.gRev = p.gMax * u;
+      dgRev = p.gMax / t * (P - u * u.transpose());
+    }
+    const double c = p.mu / p.gMax;
+    out.force -= c * R * out.gRev;
+    dfdd -= c * R * dgRev;
+    if (!symmetrised) dfdd -= c * out.gRev * dR * N.transpose();
+  }
+  out.stiffness = -dfdd;
+  return out;
+}
+
+}  // namespace fibra
