@@ -19,6 +19,7 @@ struct LinearSystem {
   Index freeCount = 0;          // number of equations
   // --- per equation ---
   std::vector<Index> dofOf;     // the DOF of an equation
+  std::vector<Index> diagonal;  // index into K.valuePtr() of the equation's diagonal entry
 
   // --- the tangent: upper triangle (symmetric) or full (non-symmetric), CSC, free DOFs ---
   bool symmetric = true;

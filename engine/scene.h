@@ -128,10 +128,13 @@ struct OutputDef {
   std::vector<ProbeDef> probes;
 };
 
-// Contact detection parameters (paper section 3). NaN means "derive the default" (see
-// docs/SCENE.md for the rules, which use the radii and element lengths of the pair).
+// Contact parameters. Detection (paper section 3) and mechanics (section 4). NaN means "derive
+// the default" (docs/SCENE.md gives the rules, which use the radii and element lengths).
+enum class FrictionTangent { Consistent, Symmetrised };
+
 struct ContactDef {
   bool enabled = false;
+  // --- detection ---
   double proximityDistance = std::numeric_limits<double>::quiet_NaN();  // Delta_prox, mm
   double testPointSpacing = std::numeric_limits<double>::quiet_NaN();   // l_zp, mm
   double thetaCross = std::numeric_limits<double>::quiet_NaN();         // rad
@@ -139,6 +142,46 @@ struct ContactDef {
   bool selfContact = false;                                            // contact on one fibre
   double selfContactSeparation = std::numeric_limits<double>::quiet_NaN();  // min |s1 - s2|, mm
   double skin = std::numeric_limits<double>::quiet_NaN();  // broadphase rebuild distance, mm
+  // --- mechanics ---
+  double maxPenetration = std::numeric_limits<double>::quiet_NaN();  // p_max per zone, mm
+  double regularisation = 0.5;        // p_reg / p_max (eq. 12)
+  double initialPenalty = std::numeric_limits<double>::quiet_NaN();  // k of a new zone, N/mm
+  double penaltyChange = 10;          // bound on k_new / k_old (and its inverse) per update
+  double friction = 0;                // mu between fibres
+  double maxReversibleSlip = std::numeric_limits<double>::quiet_NaN();  // g_T,max, mm
+  FrictionTangent frictionTangent = FrictionTangent::Consistent;
+  int maxDetectionLoops = 3;          // n_A: contact elements fixed point
+  int maxNormalLoops = 3;             // n_B: normals fixed point
+};
+
+// A rigid tool whose surface touches the fibres through the same contact-friction laws. Its
+// motion is rigid: x -> c + R(t)(x - c) + d(t), as for held DOFs.
+enum class ToolKind { Plane, Cylinder };
+
+struct ToolDef {
+  std::string name;
+  ToolKind kind = ToolKind::Plane;
+  Vec3 point = Vec3::Zero();        // plane: a point of it; cylinder: a point of its axis, mm
+  Vec3 direction = Vec3::UnitZ();   // plane: normal, towards the fibres; cylinder: axis
+  double radius = 0;                // cylinder radius, mm
+  bool inside = false;              // cylinder: the fibres are inside it
+  Vec3 displacement = Vec3::Zero();  // mm, scaled by displacementTable
+  TableDef displacementTable{{0.0, 1.0}, {0.0, 1.0}};
+  bool rotates = false;
+  Vec3 axis = Vec3::UnitZ();        // rotation axis
+  Vec3 centre = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // default: point
+  TableDef angle;                   // rad
+  double friction = 0;              // mu between the tool and the fibres
+  double maxPenetration = std::numeric_limits<double>::quiet_NaN();  // default: the contact's
+};
+
+// Stabilisation of fibres held only by contact: a spring of `stiffness` from every free DOF of
+// the listed fibres (all when empty) to its value at the start of the increment (x0: N/mm;
+// directors: stiffness R^2, N mm). It vanishes only as the increments do, so its force at
+// convergence is reported with every increment (StepReport::contact.stabilisation).
+struct StabilisationDef {
+  double stiffness = 0;  // N/mm; 0: off
+  std::vector<std::string> fibres;
 };
 
 struct SceneDef {
@@ -150,6 +193,8 @@ struct SceneDef {
   std::vector<LoadDef> loads;
   std::vector<StepDef> steps;
   ContactDef contact;
+  std::vector<ToolDef> tools;
+  StabilisationDef stabilisation;
   OutputDef output;
 };
 

@@ -1,12 +1,15 @@
 // Scene build: SceneDef -> stores. Resolves names (materials, fibres, groups) into indices,
 // generates the fibres' nodes and reference frames, the held DOFs, the beam reference data, the
 // equation numbering and the tangent pattern, and wires the iteration's task graph.
+#include "engine/contact_loops.h"
 #include "engine/fibre_builder.h"
 #include "engine/world_state.h"
 #include "systems/beam_assembler.h"
 #include "systems/beam_section.h"
 #include "systems/boundary.h"
 #include "systems/sparse_pattern.h"
+#include "systems/stabilisation.h"
+#include "systems/tool_contact.h"
 
 #include <map>
 
@@ -128,6 +131,18 @@ void buildIterationGraph(WorldState& w) {
   g.add("loads", reads(w.fibres, w.loads, w.groups), writes(w.system), [&w] {
     assembleLoads(w.fibres, w.loads, w.groups, w.fibres.q, w.solveTime, w.withTangent, w.system);
   });
+  if (w.contact.tools) {
+    const ToolContactParams p{w.contact.toolProximity, w.contact.pRegRatio, w.contact.gMax,
+                              w.contact.symmetrised};
+    g.add("tool contact", reads(w.fibres), writes(w.system, w.tools, w.toolContacts), [&w, p] {
+      assembleToolContacts(w.fibres, w.fibres.q, w.tools, w.toolContacts, p, w.solveTime,
+                           w.withTangent, w.system);
+    });
+  }
+  if (w.scene.stabilisation.stiffness > 0)
+    g.add("stabilisation", reads(w.fibres), writes(w.system), [&w] {
+      assembleStabilisation(w.fibres, w.fibres.q, w.qStart, w.stabilisation, w.withTangent, w.system);
+    });
   w.arena->execute([&] { g.build(); });
 }
 
@@ -164,6 +179,12 @@ void buildWorld(WorldState& w) {
   // is 7e-14 E A, and it grows with the coordinates and the number of DOFs: the floor (the force
   // that strains the stiffest fibre by 1e-4) keeps the default relative tolerance above it.
   w.forceFloor = 1e-4 * maxE * maxArea;
+
+  buildContact(w);
+  bool friction = w.scene.contact.enabled && w.scene.contact.friction > 0;
+  for (const ToolDef& t : w.scene.tools) friction = friction || t.friction > 0;
+  w.system.symmetric = !friction || w.contact.symmetrised;
+  w.qStart = w.fibres.q;
 
   numberEquations(w.fibres, w.constraints, w.system);
   w.arena->execute([&] { buildPattern(w.fibres, beamCliques(w.fibres), w.system); });

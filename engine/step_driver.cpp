@@ -4,11 +4,14 @@
 //   3. on failure, bisect the remaining interval (bounded by the step's maxCutbacks) and retry
 //      from the last converged sub-state; never accept a non-converged state;
 //   4. commit: time, increment and step counters.
+#include "engine/contact_loops.h"
 #include "engine/world_state.h"
 #include "systems/boundary.h"
 #include "systems/newton.h"
+#include "systems/stabilisation.h"
 
 #include <chrono>
+#include <cmath>
 
 namespace fibra {
 namespace {
@@ -17,10 +20,19 @@ double stepStart(const WorldState& w, int step) {
   return step == 0 ? 0.0 : w.scene.steps[step - 1].endTime;
 }
 
+// |stabilisation force on the free DOFs| / F_ref at the converged state.
+double stabilisationEffect(const WorldState& w) {
+  const Eigen::VectorXd f = stabilisationForce(w.fibres, w.fibres.q, w.qStart, w.stabilisation);
+  double free2 = 0;
+  for (Index i = 0; i < w.system.freeCount; ++i) free2 += std::pow(f(w.system.dofOf[i]), 2);
+  const double ref = std::max(w.system.fext.norm(), w.forceFloor);
+  return std::sqrt(free2) / ref;
+}
+
 NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStart,
-                     StepTimings& timings) {
+                     StepTimings& timings, ContactReport& contact) {
   w.solveTime = tTry;
-  applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+  w.qStart = w.fibres.q;
   NewtonSettings settings;
   settings.maxIterations = st.maxIterations;
   settings.forceTolerance = st.forceTolerance;
@@ -41,7 +53,15 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
     };
   }
   NewtonResult r;
-  w.arena->execute([&] { r = solveNewton(w.fibres.q, w.system, w.solver, settings, cb, timings); });
+  w.arena->execute([&] {
+    if (hasContact(w)) {
+      r = solveContactIncrement(w, tTry, settings, cb, timings, contact);
+    } else {
+      applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+      r = solveNewton(w.fibres.q, w.system, w.solver, settings, cb, timings);
+    }
+  });
+  if (r.outcome == NewtonOutcome::Converged) contact.stabilisation = stabilisationEffect(w);
   return r;
 }
 
@@ -65,13 +85,16 @@ StepReport advance(WorldState& w) {
 
   const Eigen::VectorXd qStart = w.fibres.q;
   Eigen::VectorXd qGood = qStart;
+  const ContactCheckpoint contactStart = contactCheckpoint(w);
+  ContactCheckpoint contactGood = contactStart;
   double tGood = w.time, dt = t1 - w.time;
   while (tGood < t1) {
     const double tTry = tGood + dt >= t1 - 1e-12 * std::abs(t1) ? t1 : tGood + dt;
-    const NewtonResult nr = attempt(w, st, tTry, tStart, rep.timings);
+    const NewtonResult nr = attempt(w, st, tTry, tStart, rep.timings, rep.contact);
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {
+      contactGood = contactCheckpoint(w);
       qGood = w.fibres.q;
       tGood = tTry;
       rep.iterations = nr.iterations;
@@ -81,6 +104,7 @@ StepReport advance(WorldState& w) {
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled || ++rep.cutbacks > st.maxCutbacks) {
       w.fibres.q = qStart;
+      restoreContact(w, contactStart);
       assembleResidual(w, w.time);
       rep.status = cancelled ? StepStatus::Cancelled : StepStatus::Failed;
       rep.message = cancelled ? "cancelled" : "increment to t = " + std::to_string(t1) +
@@ -92,6 +116,7 @@ StepReport advance(WorldState& w) {
     rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
                    std::to_string(tTry) + ": " + nr.message;
     w.fibres.q = qGood;
+    restoreContact(w, contactGood);
     dt *= 0.5;
   }
 

@@ -26,6 +26,8 @@ const GroupStore& World::groups() const { return s_->groups; }
 const ConstraintStore& World::constraints() const { return s_->constraints; }
 Eigen::VectorXd World::residual() const { return s_->system.r; }
 
+Vec3 World::toolReaction(Index tool) const { return s_->tools.reaction[tool]; }
+
 Reaction World::reaction(Index bc) const {
   return reactionOf(s_->constraints, s_->fibres.q, s_->system.r, bc, s_->scene.output.momentPoint);
 }

@@ -54,6 +54,19 @@ struct StepTimings {  // seconds of wall time in this increment, all attempts to
   double assemble = 0, factorise = 0, solve = 0, total = 0;
 };
 
+struct ContactReport {
+  int detectionLoops = 0;      // loop A iterations of the accepted attempt
+  int normalLoops = 0;         // loop B iterations, summed over loop A
+  int zones = 0;               // proximity zones (fibre-fibre)
+  int elements = 0;            // fibre-fibre contact elements
+  int toolElements = 0;        // fibre-tool contact elements
+  int active = 0;              // elements with a positive normal force
+  int sliding = 0;             // elements in slip
+  double maxPenetration = 0;   // over all elements, mm
+  double maxPenetrationRatio = 0;  // max over zones of penetration / p_max
+  double stabilisation = 0;    // |stabilisation forces| / F_ref at convergence
+};
+
 struct StepReport {
   StepStatus status = StepStatus::Finished;
   int step = -1;            // scene step index
@@ -66,6 +79,7 @@ struct StepReport {
   double residual = 0;      // final relative residual
   std::vector<NewtonRecord> history;  // the accepted attempt's iterations
   StepTimings timings;
+  ContactReport contact;    // when the scene has contact or tools
   std::string message;      // why a cutback or failure happened
 };
 
@@ -103,6 +117,7 @@ class World {
   const GroupStore& groups() const;
   const ConstraintStore& constraints() const;
   Reaction reaction(Index bc) const;      // of the current state
+  Vec3 toolReaction(Index tool) const;    // force the fibres exert on a tool, N
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
 
  private:

@@ -5,7 +5,9 @@
 #include "components/beam_store.h"
 #include "components/boundary.h"
 #include "components/fibres.h"
+#include "components/friction_history.h"
 #include "components/linear_system.h"
+#include "components/tools.h"
 #include "engine/task_graph.h"
 #include "engine/world.h"
 #include "systems/linear_solver.h"
@@ -15,6 +17,21 @@
 #include <memory>
 
 namespace fibra {
+
+// Contact parameters resolved from the scene (defaults derived from the radii).
+struct ContactSettings {
+  bool tools = false;              // the scene has tools
+  int maxDetectionLoops = 3;       // n_A
+  int maxNormalLoops = 3;          // n_B
+  double pRegRatio = 0.5;          // p_reg / p_max
+  double penaltyChange = 10;       // bound on k_new / k_old per update
+  double gMax = 0;                 // reversible slip g_T,max, mm
+  double toolProximity = 0;        // tool contacts are made within R + this, mm
+  bool symmetrised = false;        // friction tangent without its non-symmetric part
+  double normalTolerance = 1e-3;   // rad: loop B stops when no normal turns more
+  double particleTolerance = 1e-3; // x R: loop A stops when no particle moves more
+  double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
+};
 
 struct WorldState {
   SceneDef scene;
@@ -28,6 +45,14 @@ struct WorldState {
   ConstraintStore constraints;
   LoadStore loads;
   LinearSystem system;
+
+  // Contact.
+  ContactSettings contact;
+  ToolStore tools;
+  ToolContactStore toolContacts;
+  FrictionHistoryStore history;        // at the reference state of the current contact loop
+  std::vector<double> stabilisation;   // spring stiffness per node, N/mm
+  Eigen::VectorXd qStart;              // state at the start of the increment
 
   // Solver.
   LinearSolver solver;
@@ -44,6 +69,8 @@ struct WorldState {
   int step = 0;              // scene step of the next increment
   int increment = 0;         // increments of `step` already converged
 };
+
+inline bool hasContact(const WorldState& w) { return w.contact.tools; }
 
 // Builds every store from a scene (throws SceneError on unresolved names or bad geometry).
 void buildWorld(WorldState& w);

@@ -69,6 +69,12 @@ void buildPattern(const FibreStore& fs, const CliqueList& cl, LinearSystem& ls) 
   ls.K = Eigen::Map<const SparseMatrix>(ls.freeCount, ls.freeCount, Index(inner.size()),
                                         outer.data(), inner.data(), zeros.data());
 
+  ls.diagonal.resize(ls.freeCount);
+  for (Index J = 0; J < ls.freeCount; ++J) {
+    const int* it = std::lower_bound(ls.K.innerIndexPtr() + outer[J], ls.K.innerIndexPtr() + outer[J + 1], J);
+    ls.diagonal[J] = Index(it - ls.K.innerIndexPtr());
+  }
+
   // Scatter maps: binary search of each clique entry's row in its column.
   ls.cliqueFirst.assign(cl.size() + 1, 0);
   for (Index c = 0; c < cl.size(); ++c) {

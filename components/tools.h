@@ -1,0 +1,45 @@
+// Tool stores: rigid tools (planes, cylinders) and their contact elements with the fibres.
+// No logic here; see systems/tool_contact.h.
+#pragma once
+
+#include "components/fibres.h"
+#include "engine/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fibra {
+
+struct ToolStore {
+  // --- per tool ---
+  std::vector<ToolDef> def;     // geometry at t = 0 and motion
+  std::vector<double> pMax;     // maximum penetration aimed at, mm
+  std::vector<Vec3> reaction;   // force the fibres exert on the tool, N (last assembly)
+  // --- per (tool, fibre): the zone of a tool's contacts with one fibre ---
+  std::vector<double> penalty;  // k, adapted like a fibre-fibre zone's, N/mm; [tool * fibres + f]
+};
+
+// One contact element between a fibre particle and a tool (side I: the fibre, side J: the
+// tool). Particles are material points: (element, z) along the fibre, (xi1, xi2) in the section.
+struct ToolContactStore {
+  // --- per tool contact element ---
+  std::vector<Index> tool;
+  std::vector<Index> element;       // fibre element holding the particle
+  std::vector<double> z;            // element parameter in [-1, 1]
+  std::vector<double> xi1, xi2;     // section coordinates of the particle, mm
+  std::vector<Vec3> normal;         // N, unit, from the tool to the fibre (fixed during Newton)
+  std::vector<Vec3> toolPoint;      // the tool's material point under the particle, in the
+                                    // tool's t = 0 frame, mm: p(t) = M(t) toolPoint, gap = (x - p) . N
+  // friction reference (state of the last converged contact loop)
+  std::vector<Vec3> d0;             // x - p at the reference, mm
+  std::vector<Vec3> gRev0;          // reversible slip at the reference, mm
+  // results of the last assembly
+  std::vector<double> gap;          // mm
+  std::vector<double> normalForce;  // R_N, N
+  std::vector<Vec3> gRev;           // reversible slip, mm
+  std::vector<std::uint8_t> slip;   // 1 when sliding
+
+  Index size() const { return Index(tool.size()); }
+};
+
+}  // namespace fibra

@@ -1,0 +1,37 @@
+// The nested solution loops of one increment with contact (paper section 4.4):
+//
+//   loop A (fixed point, <= n_A): detect proximity zones and contact elements at the reference
+//          state, give them the friction history of their particles
+//     loop B (fixed point, <= n_B): normals
+//       Newton-Raphson: beam strains, contact and sliding status (elements and normals fixed)
+//     adapt the penalty of every zone towards p_max (eq. 13), record the friction history
+//
+// Loop B stops early when no normal turned by more than 1e-3 rad; loop A when the contact set
+// came out unchanged (same elements, particles moved less than 1e-3 R) and no penalty changed
+// by more than 10%. The reference state of loop A's first pass is the last converged state; of
+// the next passes, the state the previous pass converged to.
+#pragma once
+
+#include "engine/world_state.h"
+#include "systems/newton.h"
+
+namespace fibra {
+
+// Resolves ContactSettings and the tool and stabilisation stores from the scene.
+void buildContact(WorldState& w);
+
+// Solves the attempt at pseudo-time tTry from the converged state; fills `report`.
+NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSettings& settings,
+                                   const NewtonCallbacks& callbacks, StepTimings& timings,
+                                   ContactReport& report);
+
+// What an increment changes besides q: friction history and penalties, saved at a converged
+// state and restored when an attempt fails.
+struct ContactCheckpoint {
+  FrictionHistoryStore history;
+  std::vector<double> toolPenalty;
+};
+ContactCheckpoint contactCheckpoint(const WorldState& w);
+void restoreContact(WorldState& w, const ContactCheckpoint& c);
+
+}  // namespace fibra

@@ -1,0 +1,43 @@
+// Scatter of one contact element into the residual and the tangent.
+//
+// A contact element acts on the relative position d = sum_s sign_s x_s of its particles
+// (sign +1 for side I, -1 for side J; a tool side has no DOFs). With f the force on side I and
+// S = -df/dd its stiffness, it adds
+//   r -= D^T f,   K += D^T S D,   D = dd/dq = [sign_s c_s[a][f] I3],
+// into the clique whose nodes are the sides' element nodes in order (side I's, then J's).
+// Not thread-safe on its own: callers scatter cliques of one colour in parallel.
+#pragma once
+
+#include "components/linear_system.h"
+#include "systems/particle.h"
+
+namespace fibra {
+
+inline void scatterContact(const ParticleWeights* side, const double* sign, int sides,
+                           const Vec3& f, const Eigen::Matrix3d& S, Index clique,
+                           bool withTangent, LinearSystem& ls) {
+  int total = 0;
+  for (int s = 0; s < sides; ++s) total += side[s].nodes;
+  for (int s = 0; s < sides; ++s)
+    for (int a = 0; a < side[s].nodes; ++a)
+      for (int k = 0; k < 3; ++k)
+        ls.r.segment<3>(kNodeDofs * (side[s].firstNode + a) + 3 * k) -= sign[s] * side[s].c[a][k] * f;
+  if (!withTangent) return;
+  const Index n = kNodeDofs * total;
+  const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
+  double* values = ls.K.valuePtr();
+  for (int s = 0, na = 0; s < sides; na += side[s].nodes, ++s)
+    for (int t = 0, nb = 0; t < sides; nb += side[t].nodes, ++t)
+      for (int a = 0; a < side[s].nodes; ++a)
+        for (int b = 0; b < side[t].nodes; ++b)
+          for (int k = 0; k < 3; ++k)
+            for (int h = 0; h < 3; ++h) {
+              const double w = sign[s] * sign[t] * side[s].c[a][k] * side[t].c[b][h];
+              const Index i0 = kNodeDofs * (na + a) + 3 * k, j0 = kNodeDofs * (nb + b) + 3 * h;
+              for (int i = 0; i < 3; ++i)
+                for (int j = 0; j < 3; ++j)
+                  if (const Index p = pos[(i0 + i) * n + j0 + j]; p >= 0) values[p] += w * S(i, j);
+            }
+}
+
+}  // namespace fibra
