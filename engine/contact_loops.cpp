@@ -3,6 +3,7 @@
 #include "systems/boundary.h"
 #include "systems/friction_history.h"
 #include "systems/interpolation.h"
+#include "systems/particle.h"
 #include "systems/tool_contact.h"
 
 #include <algorithm>
@@ -17,18 +18,34 @@ double minRadius(const FibreStore& fs) {
   return r;
 }
 
-// --- detection: elements at the reference state, friction history carried to them ---
+// --- detection: elements at the current state, friction reference and history ---
 
-void detect(WorldState& w, double tRef) {
-  if (!w.contact.tools) return;
-  detectToolContacts(w.fibres, w.fibres.q, w.tools, tRef, w.contact.toolProximity, w.toolContacts);
+// Friction reference of the current elements: their relative positions in the state q at time
+// tRef, and the reversible slip the history holds for their particles.
+void rebase(WorldState& w, double tRef) {
   ToolContactStore& c = w.toolContacts;
   for (Index i = 0; i < c.size(); ++i) {
     const Index e = c.element[i], f = w.fibres.elementFibre[e];
+    const Vec3 x = particlePosition(w.fibres.q, particleWeights(w.fibres, e, c.z[i], c.xi1[i], c.xi2[i]));
+    c.d0[i] = x - toolMotion(w.tools.def[c.tool[i]], tRef)(c.toolPoint[i]);
     const Vec3 h = lookupHistory(w.history, f, -1 - c.tool[i], arcLength(w.fibres, e, c.z[i]),
                                  elementLength(w.fibres, f));
     c.gRev0[i] = projectOnPlane(h, c.normal[i]);
   }
+}
+
+void detect(WorldState& w, double t) {
+  if (!w.contact.tools) return;
+  detectToolContacts(w.fibres, w.fibres.q, w.tools, t, w.contact.toolProximity, w.toolContacts);
+  rebase(w, t);
+}
+
+// Deepest penetration of the freshly detected elements, in units of their p_max.
+double deepestDetected(const WorldState& w) {
+  double d = 0;
+  const ToolContactStore& c = w.toolContacts;
+  for (Index i = 0; i < c.size(); ++i) d = std::max(d, -c.gap[i] / w.tools.pMax[c.tool[i]]);
+  return d;
 }
 
 // Largest angle any normal turned by, rad; the reversible slips follow to the new planes.
@@ -96,6 +113,19 @@ bool sameSet(const SetSignature& a, const SetSignature& b, double tolerance) {
   return true;
 }
 
+// Largest step along dq that closes no contact element deeper than `depth` p_max. Gaps are
+// linear in the DOFs for fixed elements and normals, so g(a) = g + a N . (D dq) exactly.
+double stepLimit(const WorldState& w, const Eigen::VectorXd& dq) {
+  const ToolContactStore& c = w.toolContacts;
+  double a = 1;
+  for (Index i = 0; i < c.size(); ++i) {
+    const double allowed = w.contact.stepPenetration * w.tools.pMax[c.tool[i]];
+    const double dg = c.normal[i].dot(particlePosition(dq, particleWeights(w.fibres, c.element[i], c.z[i], c.xi1[i], c.xi2[i])));
+    if (dg < 0 && c.gap[i] > -allowed) a = std::min(a, (c.gap[i] + allowed) / -dg);
+  }
+  return a;
+}
+
 void fillReport(const WorldState& w, ContactReport& r) {
   const ToolContactStore& c = w.toolContacts;
   r.toolElements = c.size();
@@ -121,7 +151,7 @@ void buildContact(WorldState& w) {
   s.pRegRatio = def.regularisation;
   s.penaltyChange = def.penaltyChange;
   s.gMax = std::isfinite(def.maxReversibleSlip) ? def.maxReversibleSlip : 0.005 * R;
-  s.toolProximity = std::isfinite(def.proximityDistance) ? def.proximityDistance : R;
+  s.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_contact.h
   s.symmetrised = def.frictionTangent == FrictionTangent::Symmetrised;
   const double pMax = std::isfinite(def.maxPenetration) ? def.maxPenetration : 0.005 * R;
 
@@ -151,8 +181,12 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
                                    const NewtonCallbacks& cb, StepTimings& timings,
                                    ContactReport& report) {
   const ContactSettings& s = w.contact;
+  NewtonCallbacks callbacks = cb;
+  callbacks.stepLimit = [&w](const Eigen::VectorXd& dq) { return stepLimit(w, dq); };
   NewtonResult nr;
   report = ContactReport{};
+  const Eigen::VectorXd qEntry = w.fibres.q;
+  const FrictionHistoryStore historyEntry = w.history;
   detect(w, w.time);
   applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
   for (int a = 1; a <= s.maxDetectionLoops; ++a) {
@@ -160,7 +194,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     for (int b = 1; b <= s.maxNormalLoops; ++b) {
       ++report.normalLoops;
       const int before = nr.iterations;
-      nr = solveNewton(w.fibres.q, w.system, w.solver, settings, cb, timings);
+      nr = solveNewton(w.fibres.q, w.system, w.solver, settings, callbacks, timings);
       nr.iterations += before;
       if (nr.outcome != NewtonOutcome::Converged) return nr;
       if (b == s.maxNormalLoops || updateNormals(w, tTry) < s.normalTolerance) break;
@@ -174,6 +208,15 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     if (sameSet(previous, signature(w), s.particleTolerance * minRadius(w.fibres)) &&
         change <= s.penaltyTolerance)
       break;
+    if (deepestDetected(w) > s.stepPenetration) {
+      // The last pass went deep where it had no elements: redo the increment from its start
+      // with the new elements, so that the step limit can bring them into contact gently.
+      w.fibres.q = qEntry;
+      w.history = historyEntry;
+      rebase(w, w.time);
+      applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+      ++report.restarts;
+    }
   }
   return nr;
 }

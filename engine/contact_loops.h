@@ -9,7 +9,12 @@
 // Loop B stops early when no normal turned by more than 1e-3 rad; loop A when the contact set
 // came out unchanged (same elements, particles moved less than 1e-3 R) and no penalty changed
 // by more than 10%. The reference state of loop A's first pass is the last converged state; of
-// the next passes, the state the previous pass converged to.
+// the next passes, the state the previous pass converged to — unless that state penetrates the
+// newly detected elements deeper than the Newton step limit allows (stepPenetration p_max),
+// then the pass restarts from the increment's start with the new elements (reported).
+// Newton's steps are limited so that no element closes deeper than stepPenetration p_max in one
+// step: without it the first step of an increment that brings fibres into contact overshoots by
+// millimetres and Newton then cycles between contact states.
 #pragma once
 
 #include "engine/world_state.h"

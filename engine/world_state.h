@@ -26,11 +26,12 @@ struct ContactSettings {
   double pRegRatio = 0.5;          // p_reg / p_max
   double penaltyChange = 10;       // bound on k_new / k_old per update
   double gMax = 0;                 // reversible slip g_T,max, mm
-  double toolProximity = 0;        // tool contacts are made within R + this, mm
+  double toolProximity = 0;        // tool contacts are made within R + this, mm (NaN: default)
   bool symmetrised = false;        // friction tangent without its non-symmetric part
   double normalTolerance = 1e-3;   // rad: loop B stops when no normal turns more
   double particleTolerance = 1e-3; // x R: loop A stops when no particle moves more
   double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
+  double stepPenetration = 10;     // x p_max: deepest closing of an element in one Newton step
 };
 
 struct WorldState {

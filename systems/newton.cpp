@@ -64,10 +64,18 @@ struct Context {
   // Step length: the full Newton step, halved while the residual is not finite; with the
   // optional line search, regula falsi (Illinois) on the energy slope s(a) = dq . r_f(q0 + a dq)
   // until |s| <= 0.5 |s(0)|, at most 6 trials. Leaves ls assembled with the tangent at q.
+  // The step direction on every DOF (zero on the held ones).
+  Eigen::VectorXd fullStep() const {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(q.size());
+    for (Index i = 0; i < ls.freeCount; ++i) d(ls.dofOf[i]) = dq(i);
+    return d;
+  }
+
   std::pair<double, double> step() {
     const Eigen::VectorXd q0 = q;
     const double s0 = dq.dot(rf);
-    double a = 1, res = moveTo(q0, a, true);
+    double a = cb.stepLimit ? std::clamp(cb.stepLimit(fullStep()), 1e-6, 1.0) : 1.0;
+    double res = moveTo(q0, a, true);
     for (int k = 0; k < settings.maxHalvings && !std::isfinite(res); ++k) res = moveTo(q0, a *= 0.5, true);
     double s = dq.dot(rf);
     if (!settings.lineSearch || !std::isfinite(res) || s0 >= 0 || s <= 0.5 * std::abs(s0)) return {a, res};

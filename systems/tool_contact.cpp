@@ -39,7 +39,8 @@ void addContact(const FibreStore& fs, const Eigen::VectorXd& q, Index tool, Inde
   const Index f = fs.elementFibre[e];
   const Section sec = sectionAt(fs, q, {e, z});
   const SurfacePoint centre = closestSurfacePoint(def, m, sec.x0);
-  if (centre.distance > fs.radius[f] + proximity) return;
+  const double reach = std::isfinite(proximity) ? proximity : std::max(fs.radius[f], 0.5 * elementLength(fs, f));
+  if (centre.distance > fs.radius[f] + reach) return;
   const Eigen::Vector2d xi = outlinePoint(sec.g1, sec.g2, fs.radius[f], -centre.normal);
   const Vec3 x = sec.x0 + xi(0) * sec.g1 + xi(1) * sec.g2;
   const SurfacePoint sp = closestSurfacePoint(def, m, x);

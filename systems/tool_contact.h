@@ -4,7 +4,9 @@
 // Motion: a tool's point x (at t = 0) is at M(t) x = c + R(t)(x - c) + d(t).
 // Detection (reads FibreStore, q, ToolStore; writes ToolContactStore; once per contact loop):
 //   along every fibre element, at the contact test locations (2 per quadratic element, 1 per
-//   linear), a contact element is made when the centreline is within R + Delta of the surface;
+//   linear), a contact element is made when the centreline is within R + Delta of the surface
+//   (Delta: the scene's proximity distance; by default max(R, h/2), h the element length, so
+//   that a fibre approaching the tool has elements before it arrives);
 //   its particle is the outline point facing the tool (paper Fig. 4 with the direction -N), its
 //   normal N the surface normal at the closest point (towards the fibre), its tool point the
 //   surface point under the particle, kept as a material point of the tool.
@@ -36,7 +38,7 @@ struct SurfacePoint {
 SurfacePoint closestSurfacePoint(const ToolDef& tool, const RigidMotion& m, const Vec3& x);
 
 struct ToolContactParams {
-  double proximity = 0;   // extra distance beyond the fibre radius that makes an element, mm
+  double proximity = 0;   // extra distance beyond the fibre radius that makes an element, mm (NaN: default)
   double pRegRatio = 0.5; // p_reg / p_max
   double gMax = 0;        // reversible slip, mm
   bool symmetrised = false;
