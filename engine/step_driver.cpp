@@ -83,20 +83,22 @@ StepReport advance(WorldState& w) {
   rep.step = w.step;
   rep.increment = w.increment + 1;
 
+  // The world always holds the last converged (sub-)state: q, its time, its contact state.
   const Eigen::VectorXd qStart = w.fibres.q;
+  const double timeStart = w.time;
   Eigen::VectorXd qGood = qStart;
   const ContactCheckpoint contactStart = contactCheckpoint(w);
   ContactCheckpoint contactGood = contactStart;
-  double tGood = w.time, dt = t1 - w.time;
-  while (tGood < t1) {
-    const double tTry = tGood + dt >= t1 - 1e-12 * std::abs(t1) ? t1 : tGood + dt;
+  double dt = t1 - w.time;
+  while (w.time < t1) {
+    const double tTry = w.time + dt >= t1 - 1e-12 * std::abs(t1) ? t1 : w.time + dt;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep.timings, rep.contact);
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {
       contactGood = contactCheckpoint(w);
       qGood = w.fibres.q;
-      tGood = tTry;
+      w.time = tTry;
       rep.iterations = nr.iterations;
       rep.residual = nr.residual;
       continue;
@@ -104,6 +106,7 @@ StepReport advance(WorldState& w) {
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled || ++rep.cutbacks > st.maxCutbacks) {
       w.fibres.q = qStart;
+      w.time = timeStart;
       restoreContact(w, contactStart);
       assembleResidual(w, w.time);
       rep.status = cancelled ? StepStatus::Cancelled : StepStatus::Failed;
@@ -120,7 +123,6 @@ StepReport advance(WorldState& w) {
     dt *= 0.5;
   }
 
-  w.time = t1;
   if (++w.increment == st.increments) {
     ++w.step;
     w.increment = 0;

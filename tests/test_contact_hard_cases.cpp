@@ -1,0 +1,96 @@
+// Hard cases with contact: contacts appearing and vanishing within a step, an increment too
+// large for Newton (cutbacks rescue it), penalties adapted until the deepest penetration sits at
+// p_max; never a NaN, never a silent non-convergence.
+#include "beam_fixtures.h"
+
+#include <doctest/doctest.h>
+
+using namespace fibra;
+using namespace fibra::test;
+
+namespace {
+
+// A straight fibre along x (4 mm, R = 0.1 mm), clamped at both ends, resting on the top of a
+// roller (radius 1 mm, axis y, under its middle) that rises by `rise` mm at mid-step and comes
+// back down: contact grows and vanishes.
+SceneDef risingRoller(double rise, int increments) {
+  BeamSpec b;
+  b.length = 4;
+  b.radius = 0.1;
+  b.elements = 8;
+  SceneDef s = straightBeam(b, increments);
+  for (auto& f : s.fibres) f.geometry.points = {Vec3(0, 0, 0.6), Vec3(4, 0, 0.6)};
+  for (const char* end : {"b.start", "b.end"}) {
+    BcDef c;
+    c.group = end;
+    s.bcs.push_back(c);
+  }
+  ToolDef roller;
+  roller.name = "roller";
+  roller.kind = ToolKind::Cylinder;
+  roller.point = Vec3(2, 0, -0.5 - 1e-3);
+  roller.direction = Vec3::UnitY();
+  roller.radius = 1;
+  roller.displacement = Vec3(0, 0, rise);
+  roller.displacementTable = {{0, 0.5, 1}, {0, 1, 0}};
+  s.tools.push_back(roller);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("contact appears, carries load and vanishes within one step") {
+  World w(risingRoller(0.3, 12));
+  int withContact = 0;
+  double push = 0;  // largest downward force on the roller, N
+  while (!w.finished()) {
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    REQUIRE(std::isfinite(r.residual));
+    if (r.contact.active > 0) ++withContact;
+    push = std::max(push, -w.toolReaction(0).z());
+  }
+  CHECK(withContact >= 8);   // it touched for most of the step,
+  CHECK(push > 0.1);         // lifted the fibre,
+  CHECK(w.toolReaction(0).norm() == 0);  // and let go at the end
+  CHECK((w.fibres().q - w.fibres().qRef).norm() < 1e-6);
+}
+
+TEST_CASE("an increment too large for Newton with contact is rescued by cutbacks") {
+  SceneDef s = risingRoller(0.3, 1);
+  s.tools[0].displacementTable = {{0, 1}, {0, 1}};  // the whole rise in one increment
+  s.steps[0].maxIterations = 5;
+  World w(s);
+  const StepReport r = w.step();
+  CHECK(r.status == StepStatus::Converged);
+  CHECK(r.cutbacks >= 1);
+  CHECK(r.message.find("cutback") != std::string::npos);
+  CHECK(r.contact.maxPenetrationRatio < 2);
+}
+
+TEST_CASE("a step that cannot converge fails with a report and the last converged state") {
+  SceneDef s = risingRoller(0.3, 1);
+  s.tools[0].displacementTable = {{0, 1}, {0, 1}};
+  s.steps[0].maxIterations = 3;
+  s.steps[0].maxCutbacks = 1;
+  World w(s);
+  const StepReport r = w.step();
+  CHECK(r.status == StepStatus::Failed);
+  CHECK(r.message.find("failed after 1 cutbacks") != std::string::npos);
+  CHECK(w.fibres().q == w.fibres().qRef);
+  CHECK(w.fibres().q.allFinite());
+}
+
+TEST_CASE("penalty adaptation brings the deepest penetration to p_max") {
+  SceneDef s = risingRoller(0.3, 6);
+  s.tools[0].displacementTable = {{0, 1}, {0, 1}};  // rise and stay
+  s.contact.maxPenetration = 1e-3;
+  World w(s);
+  StepReport r;
+  while (!w.finished()) {
+    r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+  }
+  CHECK(r.contact.active > 0);
+  CHECK(r.contact.maxPenetrationRatio == doctest::Approx(1).epsilon(0.1));
+}
