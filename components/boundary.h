@@ -33,7 +33,10 @@ struct ConstraintStore {
 struct LoadStore {
   // --- per load ---
   std::vector<LoadDef> def;
-  std::vector<Index> group;  // GroupStore index
+  std::vector<Index> group;         // GroupStore index
+  std::vector<Index> elementFirst;  // line loads: first entry in `elements` (size loads + 1)
+  // --- per loaded element ---
+  std::vector<Index> elements;      // elements a line load acts on
 };
 
 }  // namespace fibra

@@ -90,15 +90,17 @@ struct BcDef {
   TableDef angle;                        // rad
 };
 
-// Dead loads on each node of a group. A force F (N) adds -F.x0 to the energy. A moment M
-// (N mm) is a torque |M| about the fixed axis M/|M|: it adds -|M| phi, phi the rotation of the
-// section about that axis measured on the directors' projections (conservative, symmetric).
-enum class LoadKind { Force, Moment };
+// Dead loads. Force: F (N) on each node of the group, adding -F.x0 to the energy. Moment: M
+// (N mm) on each node, a torque |M| about the fixed axis M/|M|, adding -|M| phi, phi the rotation
+// of the section about that axis measured on the directors' projections (conservative,
+// symmetric). LineForce: w (N/mm) per unit reference length on every element whose nodes all
+// belong to the group, distributed consistently (f_a = w int N_a ds).
+enum class LoadKind { Force, Moment, LineForce };
 
 struct LoadDef {
   LoadKind kind = LoadKind::Force;
   std::string group;
-  Vec3 vector = Vec3::Zero();  // N or N mm, per node, scaled by table
+  Vec3 vector = Vec3::Zero();  // N or N mm per node, or N/mm along the fibre; scaled by table
   TableDef table{{0.0, 1.0}, {0.0, 1.0}};
 };
 

@@ -113,9 +113,22 @@ void buildConstraints(WorldState& w) {
 }
 
 void buildLoads(WorldState& w) {
+  LoadStore& ls = w.loads;
+  ls.elementFirst.assign(1, 0);
   for (size_t l = 0; l < w.scene.loads.size(); ++l) {
-    w.loads.def.push_back(w.scene.loads[l]);
-    w.loads.group.push_back(groupIndex(w.groups, w.scene.loads[l].group, at("loads", l)));
+    const Index g = groupIndex(w.groups, w.scene.loads[l].group, at("loads", l));
+    ls.def.push_back(w.scene.loads[l]);
+    ls.group.push_back(g);
+    if (w.scene.loads[l].kind == LoadKind::LineForce) {
+      std::vector<bool> in(w.fibres.nodes(), false);
+      for (Index k = w.groups.first[g]; k < w.groups.first[g] + w.groups.count[g]; ++k) in[w.groups.members[k]] = true;
+      for (Index e = 0; e < w.fibres.elements(); ++e) {
+        bool all = true;
+        for (int a = 0; a <= w.fibres.order[w.fibres.elementFibre[e]]; ++a) all = all && in[w.fibres.elementFirstNode[e] + a];
+        if (all) ls.elements.push_back(e);
+      }
+    }
+    ls.elementFirst.push_back(Index(ls.elements.size()));
   }
 }
 

@@ -1,5 +1,7 @@
 #include "systems/boundary.h"
 
+#include "systems/interpolation.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 
@@ -55,6 +57,22 @@ void addMoment(const FibreStore& fs, Index n, const Vec3& M, const Eigen::Vector
     for (int j = 0; j < 6; ++j) addEntry(ls, ls.equation[d + i], ls.equation[d + j], Kg(i, j));
 }
 
+// Consistent nodal forces of a line load w (N/mm): f_a = w (h/2) int_{-1}^{1} N_a dz.
+void addLineForce(const FibreStore& fs, const LoadStore& loads, size_t l, const Vec3& w,
+                  LinearSystem& ls) {
+  static constexpr double kWeights[2][3] = {{1, 1, 0}, {1.0 / 3, 4.0 / 3, 1.0 / 3}};
+  for (Index k = loads.elementFirst[l]; k < loads.elementFirst[l + 1]; ++k) {
+    const Index e = loads.elements[k], f = fs.elementFibre[e];
+    const double half = 0.5 * elementLength(fs, f);
+    for (int a = 0; a <= fs.order[f]; ++a) {
+      const Vec3 fa = kWeights[fs.order[f] - 1][a] * half * w;
+      const Index d = kNodeDofs * (fs.elementFirstNode[e] + a);
+      ls.r.segment<3>(d) -= fa;
+      ls.fext.segment<3>(d) += fa;
+    }
+  }
+}
+
 }  // namespace
 
 void applyConstraints(const FibreStore& fs, const ConstraintStore& cs, const GroupStore& groups,
@@ -83,6 +101,10 @@ void assembleLoads(const FibreStore& fs, const LoadStore& loads, const GroupStor
     const LoadDef& def = loads.def[l];
     const Vec3 v = def.vector * tableValue(def.table, time);
     const Index g = loads.group[l];
+    if (def.kind == LoadKind::LineForce) {
+      addLineForce(fs, loads, l, v, ls);
+      continue;
+    }
     for (Index k = groups.first[g]; k < groups.first[g] + groups.count[g]; ++k) {
       const Index n = groups.members[k];
       if (def.kind == LoadKind::Force) {

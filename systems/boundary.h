@@ -6,6 +6,7 @@
 // assembleLoads     reads LoadStore, GroupStore, q; writes LinearSystem fext, r (subtracts
 //                   f_ext) and K (adds the moment loads' stiffness). Serial: loads are few.
 //   Force F on a node:   Pi = -F . x0.
+//   Line force w (N/mm) on an element: consistent nodal forces w (h/2) int N_a dz.
 //   Moment M on a node:  Pi = -|M| phi, phi the rotation of the section about the fixed axis
 //     e = M/|M|: phi = atan2(S, C), C = sum_a u_a . g_a, S = sum_a (e x u_a) . g_a with
 //     u_a = G_a - (G_a . e) e the reference directors projected normal to e (the planar

@@ -106,3 +106,31 @@ TEST_CASE("no shear locking: a slender cantilever under a tip force bends as PL^
     CHECK(rel(-tipPosition(w).y(), P * std::pow(b.length, 3) / (3 * EI)) < 0.01);
   }
 }
+
+TEST_CASE("a uniform line load on a simply supported beam: midspan deflection 5 w L^4 / 384 EI") {
+  for (int order : {1, 2}) {
+    CAPTURE(order);
+    BeamSpec b = spec(100);
+    b.order = order;
+    b.elements = order == 2 ? 10 : 40;
+    const double EI = bendingStiffness(b), w = 1e-5 * EI / std::pow(b.length, 3);
+    SceneDef s = straightBeam(b);
+    for (const char* end : {"b.start", "b.end"}) {
+      BcDef pin;
+      pin.kind = BcKind::Pin;
+      pin.group = end;
+      s.bcs.push_back(pin);
+    }
+    BcDef twist;  // no rotation about the beam's own axis
+    twist.kind = BcKind::Fix;
+    twist.group = "b.start";
+    twist.dofs[G1Z] = true;
+    s.bcs.push_back(twist);
+    s.loads.push_back({LoadKind::LineForce, "b.all", Vec3(0, -w, 0), {{0, 1}, {0, 1}}});
+    World world(s);
+    REQUIRE(solveAll(world));
+    const Index mid = world.fibres().nodes() / 2;
+    CHECK(rel(-x0Of(world.fibres().q, mid).y(), 5 * w * std::pow(b.length, 4) / (384 * EI)) < 0.01);
+    CHECK(rel(world.reaction(0).force.y() + world.reaction(1).force.y(), w * b.length) < 1e-9);
+  }
+}
