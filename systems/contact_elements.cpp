@@ -16,14 +16,16 @@ struct Intermediate {
   const FibreStore& fs;
   const CentrelineStore& cl;
   Index I, J;
-  double sI1, dI, sJ1, dJ;  // start and signed length of each interval, mm
+  double sI1, sI2, sJ1, sJ2;  // the zone's intervals, mm
+  double dI, dJ;              // their signed lengths, mm
 
-  double sI(double zeta) const { return sI1 + zeta * dI; }
-  double sJ(double zeta) const { return sJ1 + zeta * dJ; }
+  // (1 - zeta) s1 + zeta s2: exactly s1 and s2 at the zone ends
+  double sI(double zeta) const { return (1 - zeta) * sI1 + zeta * sI2; }
+  double sJ(double zeta) const { return (1 - zeta) * sJ1 + zeta * sJ2; }
   // dx_int / dzeta, mm
   Vec3 tangent(double zeta) const {
-    return 0.5 * (centrelineAt(fs, cl, I, sI(zeta)).dxds * dI +
-                  centrelineAt(fs, cl, J, sJ(zeta)).dxds * dJ);
+    return 0.5 * (centrelineTangent(fs, cl, I, sI(zeta)) * dI +
+                  centrelineTangent(fs, cl, J, sJ(zeta)) * dJ);
   }
 };
 
@@ -96,11 +98,14 @@ struct ElementSides {
   std::uint8_t flags;
 };
 
-// The sections of I and J at zeta (eq. 8 and its degenerate cases).
-ElementSides sectionsAt(const Intermediate& g, double zeta, double delta) {
+// The sections of I and J at zeta (eq. 8 and its degenerate cases); `sep` is the self-contact
+// separation (I == J).
+ElementSides sectionsAt(const Intermediate& g, double zeta, double delta, double sep) {
   const FibreStore& fs = g.fs;
   const double sIz = g.sI(zeta), sJz = g.sJ(zeta);
-  const CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sIz), cJ = centrelineAt(fs, g.cl, g.J, sJz);
+  CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sIz), cJ = centrelineAt(fs, g.cl, g.J, sJz);
+  cI.dxds = centrelineTangent(fs, g.cl, g.I, sIz);
+  cJ.dxds = centrelineTangent(fs, g.cl, g.J, sJz);
   const Vec3 xInt = 0.5 * (cI.x + cJ.x);
   const Vec3 tInt = 0.5 * (cI.dxds * g.dI + cJ.dxds * g.dJ);
   ElementSides out{sIz, sJz, 0};
@@ -112,17 +117,19 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, double delta) {
     t = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
     out.flags |= kFallbackTangent;
   }
-  const auto [aI, bI] = widened(fs, g.I, g.sI1, g.sI1 + g.dI, delta);
-  const auto [aJ, bJ] = widened(fs, g.J, g.sJ1, g.sJ1 + g.dJ, delta);
+  auto [aI, bI] = widened(fs, g.I, g.sI1, g.sI2, delta);
+  auto [aJ, bJ] = widened(fs, g.J, g.sJ1, g.sJ2, delta);
   const bool okI = planeCut(fs, g.cl, g.I, xInt, t, sIz, cI, aI, bI, out.sI);
   const bool okJ = planeCut(fs, g.cl, g.J, xInt, t, sJz, cJ, aJ, bJ, out.sJ);
-  if (!okI && okJ) {
-    out.sI = closestOnFibre(fs, g.cl, g.I, centrelineAt(fs, g.cl, g.J, out.sJ).x, aI, bI).s;
-    out.flags |= kFallbackSectionI;
-  } else if (!okJ) {
-    if (!okI) out.flags |= kFallbackSectionI;
-    out.sJ = closestOnFibre(fs, g.cl, g.J, centrelineAt(fs, g.cl, g.I, out.sI).x, aJ, bJ).s;
-    out.flags |= kFallbackSectionJ;
+  if (okI && okJ) return out;
+  if (!okI) out.flags |= kFallbackSectionI;
+  if (!okJ) out.flags |= kFallbackSectionJ;
+  if (!okI && okJ) {  // self-contact: I stays the separation below J
+    if (g.I == g.J) bI = std::min(bI, out.sJ - sep);
+    if (aI <= bI) out.sI = closestOnFibre(fs, g.cl, g.I, centrelineAt(fs, g.cl, g.J, out.sJ).x, aI, bI).s;
+  } else {
+    if (g.I == g.J) aJ = std::max(aJ, out.sI + sep);
+    if (aJ <= bJ) out.sJ = closestOnFibre(fs, g.cl, g.J, centrelineAt(fs, g.cl, g.I, out.sI).x, aJ, bJ).s;
   }
   return out;
 }
@@ -140,12 +147,13 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
                   const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
   const double delta = proximityDistance(p, g.I, g.J);
+  const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
   for (Index k = 0; k < nc; ++k) {
     const Index e = first + k;
     const double zeta = nc == 1 ? 0.5 : double(k) / (nc - 1);
-    const ElementSides sides = sectionsAt(g, zeta, delta);
-    const Section I = sectionOf(fs, q, locate(fs, g.I, sides.sI));
-    const Section J = sectionOf(fs, q, locate(fs, g.J, sides.sJ));
+    const ElementSides sides = sectionsAt(g, zeta, delta, sep);
+    const Section I = contactSection(fs, q, g.I, sides.sI);
+    const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];
     std::uint8_t flags = sides.flags;
     particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
@@ -178,7 +186,8 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
   const Index nz = zones.size();
   auto geometry = [&](Index z) {
     return Intermediate{fs, centrelines, zones.fibreI[z], zones.fibreJ[z], zones.sI1[z],
-                        zones.sI2[z] - zones.sI1[z], zones.sJ1[z], zones.sJ2[z] - zones.sJ1[z]};
+                        zones.sI2[z], zones.sJ1[z], zones.sJ2[z], zones.sI2[z] - zones.sI1[z],
+                        zones.sJ2[z] - zones.sJ1[z]};
   };
   tbb::parallel_for(tbb::blocked_range<Index>(0, nz, 16), [&](const tbb::blocked_range<Index>& r) {
     for (Index z = r.begin(); z != r.end(); ++z) {

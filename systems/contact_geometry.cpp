@@ -1,5 +1,6 @@
 #include "systems/contact_geometry.h"
 
+#include <limits>
 #include <tuple>
 
 namespace fibra {
@@ -17,15 +18,19 @@ struct Quartic {
 // leaves the bracket.
 double risingRoot(const Quartic& Q, double u, double v, double gu, double gv) {
   double z = u - gu * (v - u) / (gv - gu);
-  for (int it = 0; it < 60; ++it) {
+  for (int it = 0; it < 100; ++it) {
     const double gz = Q.g(z);
     if (gz == 0) return z;
     (gz < 0 ? u : v) = z;
-    double next = z - gz / Q.dg(z);
-    if (!(next > u && next < v)) next = 0.5 * (u + v);
-    // quadratic convergence: after a step of 1e-8 the error is of order 1e-16
-    if (std::abs(next - z) <= 1e-8 || v - u <= 1e-15) return next;
-    z = next;
+    const double newton = z - gz / Q.dg(z);
+    if (newton > u && newton < v) {
+      // quadratic convergence: after a step of 1e-9 the error is of order 1e-18
+      if (std::abs(newton - z) <= 1e-9) return newton;
+      z = newton;
+    } else {
+      z = 0.5 * (u + v);
+      if (v - u <= 1e-15) return z;
+    }
   }
   return z;
 }
@@ -115,24 +120,31 @@ bool planeCut(const FibreStore& fs, const CentrelineStore& cl, Index f, const Ve
     u = next;
     std::tie(v, dv) = F(u);
   }
-  // Bisection with Newton steps on a sign-changing bracket.
-  const double tol = 1e-13 * h;
-  double lo = sa, hi = sb, flo = F(lo).first, fhi = F(hi).first;
-  if (flo == 0 || fhi == 0) {
-    s = flo == 0 ? lo : hi;
-    return true;
+  // The sign changes of f at samples every h / 2 across [sa, sb]: bisect the one nearest s0.
+  const int n = std::max(1, int(std::ceil((sb - sa) / (0.5 * h))));
+  double lo = 0, hi = 0, nearest = std::numeric_limits<double>::infinity();
+  double u0 = sa, f0 = F(sa).first;
+  for (int i = 1; i <= n; ++i) {
+    const double u1 = i == n ? sb : sa + (sb - sa) * i / n, f1 = F(u1).first;
+    const bool root = f0 == 0 || (f1 != 0 && (f0 < 0) != (f1 < 0));
+    const double dist = s0 < u0 ? u0 - s0 : (s0 > u1 ? s0 - u1 : 0);
+    if (root && dist < nearest) lo = u0, hi = f0 == 0 ? u0 : u1, nearest = dist;
+    u0 = u1, f0 = f1;
   }
-  if ((flo < 0) == (fhi < 0)) return false;
+  if (f0 == 0 && std::abs(sb - s0) < nearest) lo = hi = sb, nearest = 0;
+  if (!(nearest < std::numeric_limits<double>::infinity())) return false;
+  const double tol = 1e-13 * h;
+  const bool loNegative = F(lo).first < 0;
   u = 0.5 * (lo + hi);
   for (int it = 0; it < 200 && hi - lo > tol; ++it) {
     std::tie(v, dv) = F(u);
     if (v == 0) break;
-    ((v < 0) == (flo < 0) ? lo : hi) = u;
+    ((v < 0) == loNegative ? lo : hi) = u;
     double next = dv != 0 ? u - v / dv : u;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     u = next;
   }
-  s = u;
+  s = lo == hi ? lo : u;
   return true;
 }
 

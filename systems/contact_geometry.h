@@ -68,6 +68,41 @@ inline Section sectionOf(const FibreStore& fs, const Eigen::VectorXd& q, FibrePo
           Vec3(v[9], v[10], v[11])};
 }
 
+// The centreline is only C0 at the nodes: within 1e-9 h of an interior element end, dx0/ds is
+// taken as the mean of the two elements' one-sided derivatives (else the element's own), so
+// that a point at a node has one tangent whichever element locates it.
+constexpr double kNodeSnap = 1e-9;  // relative to h
+
+// Element ends of fibre f within kNodeSnap h of s: the node index i (0 < i < n), else -1.
+inline Index interiorNodeAt(const FibreStore& fs, Index f, double s) {
+  const double t = s * fs.elementCount[f] / fs.length[f], i = std::round(t);
+  return std::abs(t - i) <= kNodeSnap && i > 0 && i < fs.elementCount[f] ? Index(i) : -1;
+}
+
+// dx0/ds of fibre f at s (node rule above), from the element polynomials.
+inline Vec3 centrelineTangent(const FibreStore& fs, const CentrelineStore& cl, Index f, double s) {
+  const double dzds = 2 * fs.elementCount[f] / fs.length[f];
+  const Index node = interiorNodeAt(fs, f, s);
+  if (node < 0) {
+    const FibrePoint fp = locate(fs, f, s);
+    const CentrelinePolynomial& P = cl.poly[fp.element];
+    return (P.b + 2 * fp.z * P.c) * dzds;
+  }
+  const CentrelinePolynomial &L = cl.poly[fs.firstElement[f] + node - 1],
+                             &R = cl.poly[fs.firstElement[f] + node];
+  return 0.5 * dzds * ((L.b + 2 * L.c) + (R.b - 2 * R.c));
+}
+
+// The section of fibre f at s from the nodes of q (sectionOf), dx0/ds by the node rule above.
+inline Section contactSection(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+  const Index node = interiorNodeAt(fs, f, s);
+  if (node < 0) return sectionOf(fs, q, locate(fs, f, s));
+  const Index e = fs.firstElement[f] + node;
+  Section sec = sectionOf(fs, q, {e, -1.0});
+  sec.dx0ds = 0.5 * (sec.dx0ds + sectionOf(fs, q, {e - 1, 1.0}).dx0ds);
+  return sec;
+}
+
 struct ClosestPoint {
   double z;      // element parameter of the closest point
   double dist2;  // squared distance, mm^2
@@ -90,9 +125,10 @@ ClosestOnFibre closestOnFibre(const FibreStore& fs, const CentrelineStore& cl, I
                               const Vec3& p, double sa, double sb);
 
 // Eq. 8 on fibre f: s in [sa, sb] with (x0(s) - xInt) . t = 0, t unit. Newton from s0 (c0 its
-// centreline point), safeguarded by bisection when [sa, sb] brackets a sign change. Returns
-// false (s untouched) when the plane cut is ill-posed: the fibre makes more than 80 deg with t
-// at s0 (the plane nearly contains it), or no root is found in [sa, sb].
+// centreline point) while it stays in [sa, sb]; otherwise the sign change of f nearest s0 among
+// samples every h / 2 is bisected. Returns false (s untouched) when the plane cut is ill-posed:
+// the fibre makes more than 80 deg with t at s0 (the plane nearly contains it), or f has no
+// sign change in [sa, sb].
 constexpr double kPlaneCutMinCosine = 0.17364817766693033;  // cos 80 deg
 bool planeCut(const FibreStore& fs, const CentrelineStore& cl, Index f, const Vec3& xInt,
               const Vec3& t, double s0, const CentrelinePoint& c0, double sa, double sb,

@@ -51,8 +51,8 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
   tbb::parallel_for(tbb::blocked_range<Index>(0, n, 256), [&](const tbb::blocked_range<Index>& r) {
     for (Index e = r.begin(); e != r.end(); ++e) {
       const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
-      const Section I = sectionOf(fs, q, locate(fs, fI, el.sI[e]));
-      const Section J = sectionOf(fs, q, locate(fs, fJ, el.sJ[e]));
+      const Section I = contactSection(fs, q, fI, el.sI[e]);
+      const Section J = contactSection(fs, q, fJ, el.sJ[e]);
       const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
       const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
                                         params.thetaParallel, params.thetaCross);

@@ -111,7 +111,7 @@ std::int64_t runTestPoints(const FibreStore& fs, const ContactParams& p,
   const double delta = proximityDistance(p, I, J);
   const Index i = eI - fs.firstElement[I];
   int k0 = 0;
-  if (P.lastElement == eI - 1)
+  if (eI > fs.firstElement[I] && P.lastElement == eI - 1)
     k0 = 1;
   else
     closeRun(P);

@@ -1,0 +1,143 @@
+// Small seeded fibre assemblies and helpers for the contact detection tests.
+#pragma once
+
+#include "bench/contact_assemblies.h"
+#include "components/contact.h"
+
+#include <Eigen/Geometry>
+
+#include <cstring>
+#include <numbers>
+#include <random>
+
+namespace fibra::fixtures {
+
+using assemblies::add;
+using assemblies::polylineFibre;
+
+inline FibreDef helixFibre(double R, int elements, const Vec3& origin, const Vec3& axis,
+                           double radius, double pitch, double turns, double phase) {
+  FibreDef d;
+  d.name = "h";
+  d.radius = R;
+  d.elements = elements;
+  d.order = 2;
+  d.geometry.kind = GeometryKind::Helix;
+  d.geometry.origin = origin;
+  d.geometry.axis = axis;
+  d.geometry.helixRadius = radius;
+  d.geometry.pitch = pitch;
+  d.geometry.turns = turns;
+  d.geometry.phase = phase;
+  return d;
+}
+
+// Straight fibres at random places and directions in a small slab.
+inline FibreStore straight(unsigned seed) { return assemblies::randomMat(14, 6, 1.0, 0.05, 0.15, seed); }
+
+// Orders 2 and 1 alternating, kinked polylines.
+inline FibreStore mixedOrders(unsigned seed) {
+  return assemblies::randomMat(14, 5, 1.0, 0.05, 0.15, seed, 0.3, true);
+}
+
+// Helices about random axes through a common region, and kinked polylines.
+inline FibreStore curved(unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  FibreStore fs = assemblies::randomMat(6, 6, 1.0, 0.05, 0.08, seed + 1, 0.5);
+  for (int k = 0; k < 6; ++k) {
+    const Vec3 axis = Vec3(u(rng), u(rng), 0.3 * u(rng)).normalized();
+    add(fs, helixFibre(0.05, 8, Vec3(0.6 + 0.3 * u(rng), 0.6 + 0.3 * u(rng), 0.15 * u(rng)), axis,
+                       0.1 + 0.05 * u(rng), 0.6, 1.3, 3 * u(rng)));
+  }
+  return fs;
+}
+
+// Two layers of straight fibres, the second at random angles, their centrelines 1.8 R to 2.6 R
+// apart: crossings at every angle.
+inline FibreStore crossing(unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double R = 0.05;
+  FibreStore fs;
+  for (int k = 0; k < 6; ++k) {
+    const double y = 0.15 + 0.14 * k + 0.02 * u(rng);
+    add(fs, polylineFibre("a", R, 6, 2, {Vec3(0, y, 0), Vec3(1, y + 0.1 * (u(rng) - 0.5), 0)}));
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double a = std::numbers::pi * (0.1 + 0.8 * u(rng)), z = R * (1.8 + 0.8 * u(rng));
+    const Vec3 c(0.2 + 0.6 * u(rng), 0.3 + 0.5 * u(rng), z), d(std::cos(a), std::sin(a), 0);
+    add(fs, polylineFibre("b", R, 5, 2, {c - 0.6 * d, c + 0.6 * d}));
+  }
+  return fs;
+}
+
+// A bundle of nearly parallel fibres (angles up to 4 deg) about 2.1 R apart.
+inline FibreStore nearlyParallel(unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double R = 0.05;
+  FibreStore fs;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const Vec3 c(0.5, 2.1 * R * (i + 0.5 * (j % 2)), 1.85 * R * j);
+      const Vec3 d = Vec3(1, 0.035 * u(rng), 0.035 * u(rng)).normalized();
+      add(fs, polylineFibre("p", R, 6, 2, {c - 0.5 * d + 0.2 * R * Vec3(u(rng), u(rng), 0), c + 0.5 * d}));
+    }
+  return fs;
+}
+
+// Fibres along x and y with nodes at the same spacing, crossing exactly over nodes (and a pair
+// touching end to end along x): closest points fall on element ends.
+inline FibreStore elementEnds() {
+  const double R = 0.05, h = 0.2;
+  FibreStore fs;
+  for (int k = 0; k < 3; ++k)
+    add(fs, polylineFibre("x", R, 5, 2, {Vec3(0, k * h, 0), Vec3(5 * h, k * h, 0)}));
+  for (int k = 0; k < 3; ++k)
+    add(fs, polylineFibre("y", R, 5, 2, {Vec3(k * h + h, -h, 2.1 * R), Vec3(k * h + h, 4 * h, 2.1 * R)}));
+  add(fs, polylineFibre("e", R, 5, 1, {Vec3(5 * h + 2.2 * R, 0, 0), Vec3(10 * h, 0, 0)}));
+  return fs;
+}
+
+// A copy of the state with every node moved by up to `amplitude` (mm, uniform per component)
+// and its directors deformed into an ellipse: g1 stretched by 1.3, g2 shrunk to 0.8 and sheared.
+inline Eigen::VectorXd deformed(const FibreStore& fs, unsigned seed, double amplitude,
+                                bool ellipticalSections = true) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd q = fs.q;
+  for (Index n = 0; n < fs.nodes(); ++n) {
+    x0Of(q, n) += amplitude * Vec3(u(rng), u(rng), u(rng));
+    if (!ellipticalSections) continue;
+    const Vec3 g1 = g1Of(q, n), g2 = g2Of(q, n);
+    g1Of(q, n) = 1.3 * g1;
+    g2Of(q, n) = 0.8 * g2 + 0.25 * g1;
+  }
+  return q;
+}
+
+template <class T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+inline bool sameBits(const ZoneStore& a, const ZoneStore& b) {
+  return sameBits(a.fibreI, b.fibreI) && sameBits(a.fibreJ, b.fibreJ) && sameBits(a.sI1, b.sI1) &&
+         sameBits(a.sI2, b.sI2) && sameBits(a.sJ1, b.sJ1) && sameBits(a.sJ2, b.sJ2) &&
+         sameBits(a.minDistance, b.minDistance) && sameBits(a.testPoints, b.testPoints) &&
+         sameBits(a.id, b.id) && sameBits(a.previous, b.previous) &&
+         sameBits(a.intermediateLength, b.intermediateLength) &&
+         sameBits(a.firstElement, b.firstElement) && sameBits(a.elementCount, b.elementCount);
+}
+
+inline bool sameBits(const ContactElementStore& a, const ContactElementStore& b) {
+  return sameBits(a.zone, b.zone) && sameBits(a.zeta, b.zeta) && sameBits(a.fibreI, b.fibreI) &&
+         sameBits(a.sI, b.sI) && sameBits(a.xiI1, b.xiI1) && sameBits(a.xiI2, b.xiI2) &&
+         sameBits(a.fibreJ, b.fibreJ) && sameBits(a.sJ, b.sJ) && sameBits(a.xiJ1, b.xiJ1) &&
+         sameBits(a.xiJ2, b.xiJ2) && sameBits(a.normal, b.normal) && sameBits(a.gap, b.gap) &&
+         sameBits(a.theta, b.theta) && sameBits(a.crossWeight, b.crossWeight) &&
+         sameBits(a.fallback, b.fallback);
+}
+
+}  // namespace fibra::fixtures

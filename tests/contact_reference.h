@@ -1,0 +1,261 @@
+// Brute-force reference of the contact detection, for tests only. Written independently of
+// systems/: O(F^2) fibre pairs with no broadphase, every test point of every pair, the closest
+// point over every element of J by dense sampling and bisection, the centreline from
+// interpolation.h's sectionAt (not the per-element polynomials), L_int as a fine chord sum,
+// plane cuts by sampling and bisection, particles by a least-squares solve, normals from acos.
+// It shares with the pipeline only the definitions: ContactParams (Delta_prox, the test-point
+// spacing rule, the angles, the self-contact separation) and the documented fallback rules.
+#pragma once
+
+#include "components/contact.h"
+#include "systems/contact_params.h"
+#include "systems/interpolation.h"
+
+#include <Eigen/Dense>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <vector>
+
+namespace fibra::reference {
+
+struct Zone {
+  Index I, J;
+  double sI1, sI2, sJ1, sJ2, minDistance;
+  Index testPoints;
+};
+
+struct Element {
+  double sI, sJ, xiI[2], xiJ[2];
+  Vec3 normal;
+  double gap, theta;
+  std::uint8_t fallback;  // section and tangent bits only (kFallbackSectionI/J, kFallbackTangent)
+  bool ambiguous;         // several plane-cut roots: the pipeline's choice is not checked
+};
+
+struct Detection {
+  std::vector<Zone> zones;
+  int ambiguousPoints = 0;  // test points within 1e-9 mm of Delta_prox
+};
+
+// The section at s; within 1e-9 h of an interior node, the tangent is the mean of both sides'.
+inline Section at(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+  const double h = fs.length[f] / fs.elementCount[f], node = std::round(s / h);
+  Section c = sectionAt(fs, q, locate(fs, f, s));
+  if (std::abs(s / h - node) <= 1e-9 && node > 0 && node < fs.elementCount[f]) {
+    const Index e = fs.firstElement[f] + Index(node);
+    c.dx0ds = 0.5 * (sectionAt(fs, q, {e - 1, 1.0}).dx0ds + sectionAt(fs, q, {e, -1.0}).dx0ds);
+  }
+  return c;
+}
+
+// Closest point of fibre f restricted to [sa, sb] to p: 64 samples per element length, then
+// bisection of g(s) = (x(s) - p).x'(s) around every sampled local minimum. Returns distance.
+inline double closest(const FibreStore& fs, const Eigen::VectorXd& q, Index f, const Vec3& p,
+                      double sa, double sb, double& sOut) {
+  const double h = fs.length[f] / fs.elementCount[f];
+  const int n = std::max(64, int(std::ceil((sb - sa) / h * 64)));
+  std::vector<double> s(n + 1), D(n + 1);
+  for (int i = 0; i <= n; ++i) {
+    s[i] = i == n ? sb : sa + (sb - sa) * i / n;
+    D[i] = (at(fs, q, f, s[i]).x0 - p).squaredNorm();
+  }
+  auto g = [&](double u) {
+    const Section c = at(fs, q, f, u);
+    return (c.x0 - p).dot(c.dx0ds);
+  };
+  double best = 1e300;
+  sOut = sa;
+  for (int i = 0; i <= n; ++i) {
+    if ((i > 0 && D[i - 1] < D[i]) || (i < n && D[i + 1] < D[i])) continue;
+    double lo = s[std::max(i - 1, 0)], hi = s[std::min(i + 1, n)], u = s[i];
+    if (g(lo) < 0 && g(hi) > 0) {
+      for (int it = 0; it < 80; ++it) {
+        u = 0.5 * (lo + hi);
+        (g(u) < 0 ? lo : hi) = u;
+      }
+    }
+    const double d = (at(fs, q, f, u).x0 - p).squaredNorm();
+    if (d < best || (d == best && u < sOut)) best = d, sOut = u;
+  }
+  return std::sqrt(best);
+}
+
+inline Detection detect(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p) {
+  Detection out;
+  for (Index I = 0; I < fs.fibres(); ++I)
+    for (Index J = I; J < fs.fibres(); ++J) {
+      if (I == J && !p.selfContact) continue;
+      const int m = testIntervalsPerElement(fs, p, I, J);
+      const double l = fs.length[I] / fs.elementCount[I] / m;
+      const double delta = proximityDistance(p, I, J);
+      bool open = false;
+      Zone z{};
+      for (std::int64_t k = 0; k <= std::int64_t(fs.elementCount[I]) * m; ++k) {
+        const double s = double(k) * l;
+        const Vec3 x = at(fs, q, I, s).x0;
+        double sJ = 0, d = 1e300;
+        const double sa = I == J ? s + p.selfSeparation[I] : 0;
+        if (sa <= fs.length[J]) d = closest(fs, q, J, x, sa, fs.length[J], sJ);
+        if (std::abs(d - delta) < 1e-9) ++out.ambiguousPoints;
+        if (d <= delta) {
+          if (!open) z = {I, J, s, s, sJ, sJ, d, 0};
+          open = true;
+          z.sI2 = s, z.sJ2 = sJ, z.minDistance = std::min(z.minDistance, d), ++z.testPoints;
+        } else if (open) {
+          out.zones.push_back(z);
+          open = false;
+        }
+      }
+      if (open) out.zones.push_back(z);
+    }
+  return out;
+}
+
+// Every root of (x(s) - xInt).t in [sa, sb]: sign changes over 400 samples, then bisection.
+inline std::vector<double> planeRoots(const FibreStore& fs, const Eigen::VectorXd& q, Index f,
+                                      const Vec3& xInt, const Vec3& t, double sa, double sb) {
+  auto F = [&](double u) { return (at(fs, q, f, u).x0 - xInt).dot(t); };
+  std::vector<double> roots;
+  const int n = 400;
+  double u0 = sa, f0 = F(sa);
+  for (int i = 1; i <= n; ++i) {
+    const double u1 = sa + (sb - sa) * i / n, f1 = F(u1);
+    if (f0 == 0) roots.push_back(u0);
+    else if ((f0 < 0) != (f1 < 0) && f1 != 0) {
+      double lo = u0, hi = u1;
+      for (int it = 0; it < 80; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        ((F(mid) < 0) == (f0 < 0) ? lo : hi) = mid;
+      }
+      roots.push_back(0.5 * (lo + hi));
+    }
+    u0 = u1, f0 = f1;
+  }
+  if (f0 == 0) roots.push_back(sb);
+  return roots;
+}
+
+// Particle on the outline towards the projection of dir onto span(g1, g2), by least squares.
+inline bool particle(const Section& c, double R, const Vec3& dir, double xi[2]) {
+  const Vec3 n = c.g1.cross(c.g2).normalized();
+  const Vec3 inPlane = dir - dir.dot(n) * n;
+  if (!(inPlane.norm() > 1e-9 * dir.norm())) return false;
+  Eigen::Matrix<double, 3, 2> G;
+  G << c.g1, c.g2;
+  const Eigen::Vector2d m = G.colPivHouseholderQr().solve(inPlane);
+  xi[0] = R * m(0) / m.norm();
+  xi[1] = R * m(1) / m.norm();
+  return true;
+}
+
+// The contact elements of one zone (eqs. 5-11 and the documented fallbacks); `ambiguousCount`
+// is set when 2 L_int / h_min lies within 1e-6 of a whole number (Nc not checked).
+inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd& q,
+                                     const ContactParams& p, const Zone& z, bool& ambiguousCount) {
+  const Index I = z.I, J = z.J;
+  const double dI = z.sI2 - z.sI1, dJ = z.sJ2 - z.sJ1, delta = proximityDistance(p, I, J);
+  auto xInt = [&](double zeta) {
+    return Vec3(0.5 * (at(fs, q, I, (1 - zeta) * z.sI1 + zeta * z.sI2).x0 +
+                       at(fs, q, J, (1 - zeta) * z.sJ1 + zeta * z.sJ2).x0));
+  };
+  // L_int: chord sums between the kinks (the zeta of every node of I and J), with 64 and 128
+  // chords per piece, Richardson-extrapolated (x_int is smooth within a piece).
+  std::vector<double> breaks{0, 1};
+  for (auto [f, s1, d] : {std::tuple{I, z.sI1, dI}, std::tuple{J, z.sJ1, dJ}}) {
+    const double h = fs.length[f] / fs.elementCount[f];
+    for (Index n = 1; n < fs.elementCount[f] && d != 0; ++n)
+      if (const double zeta = (n * h - s1) / d; zeta > 0 && zeta < 1) breaks.push_back(zeta);
+  }
+  std::sort(breaks.begin(), breaks.end());
+  double L = 0;
+  for (std::size_t b = 0; b + 1 < breaks.size(); ++b) {
+    auto chordSum = [&](int n) {
+      double sum = 0;
+      for (int i = 0; i < n; ++i) {
+        const double u0 = breaks[b] + (breaks[b + 1] - breaks[b]) * i / n;
+        const double u1 = breaks[b] + (breaks[b + 1] - breaks[b]) * (i + 1) / n;
+        sum += (xInt(u1) - xInt(u0)).norm();
+      }
+      return sum;
+    };
+    L += (4 * chordSum(128) - chordSum(64)) / 3;
+  }
+  const double hMin = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
+  const double ratio = 2 * L / hMin;
+  ambiguousCount = std::max(1.0, std::floor(ratio * (1 - 1e-6))) != std::max(1.0, std::floor(ratio * (1 + 1e-6)));
+  const int nc = std::max(1, int(std::floor(ratio)));
+  std::vector<Element> out;
+  for (int k = 0; k < nc; ++k) {
+    const double zeta = nc == 1 ? 0.5 : double(k) / (nc - 1);
+    const double sIz = (1 - zeta) * z.sI1 + zeta * z.sI2, sJz = (1 - zeta) * z.sJ1 + zeta * z.sJ2;
+    const Section cI = at(fs, q, I, sIz), cJ = at(fs, q, J, sJz);
+    const Vec3 x = 0.5 * (cI.x0 + cJ.x0), tInt = 0.5 * (cI.dx0ds * dI + cJ.dx0ds * dJ);
+    Element e{};
+    Vec3 t;
+    if (tInt.norm() > 1e-9 * 0.5 * (std::abs(dI) + std::abs(dJ))) {
+      t = tInt.normalized();
+    } else {
+      const Vec3 tI = cI.dx0ds.normalized(), tJ = cJ.dx0ds.normalized();
+      t = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
+      e.fallback |= kFallbackTangent;
+    }
+    auto cut = [&](Index f, const Section& c0, double s0, double s1, double s2, double& s) {
+      if (std::abs(c0.dx0ds.dot(t)) < 0.17364817766693033 * c0.dx0ds.norm()) return false;
+      const double sa = std::max(0.0, std::min(s1, s2) - delta);
+      const double sb = std::min(fs.length[f], std::max(s1, s2) + delta);
+      // Expect the root nearest s(zeta); ambiguous when another root is nearly as close or the
+      // nearest is far (Newton's choice is then not defined by "nearest").
+      std::vector<double> r = planeRoots(fs, q, f, x, t, sa, sb);
+      if (r.empty()) return false;
+      std::sort(r.begin(), r.end(), [&](double a, double b) { return std::abs(a - s0) < std::abs(b - s0); });
+      const double h = fs.length[f] / fs.elementCount[f];
+      if (r.size() > 1 && (std::abs(r[0] - s0) > 0.25 * h || std::abs(r[1] - s0) < 3 * std::abs(r[0] - s0) + 1e-3 * h))
+        e.ambiguous = true;
+      s = r[0];
+      return true;
+    };
+    e.sI = sIz, e.sJ = sJz;
+    const bool okI = cut(I, cI, sIz, z.sI1, z.sI2, e.sI), okJ = cut(J, cJ, sJz, z.sJ1, z.sJ2, e.sJ);
+    auto bracket = [&](Index f, double s1, double s2) {
+      return std::pair{std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
+    };
+    const double sep = I == J ? p.selfSeparation[I] : 0;
+    if (!okI) e.fallback |= kFallbackSectionI;
+    if (!okJ) e.fallback |= kFallbackSectionJ;
+    if (!okI && okJ) {
+      auto [a, b] = bracket(I, z.sI1, z.sI2);
+      if (I == J) b = std::min(b, e.sJ - sep);
+      if (a <= b) closest(fs, q, I, at(fs, q, J, e.sJ).x0, a, b, e.sI);
+    } else if (!okJ) {
+      auto [a, b] = bracket(J, z.sJ1, z.sJ2);
+      if (I == J) a = std::max(a, e.sI + sep);
+      if (a <= b) closest(fs, q, J, at(fs, q, I, e.sI).x0, a, b, e.sJ);
+    }
+    const Section sI = at(fs, q, I, e.sI), sJ = at(fs, q, J, e.sJ);
+    const Vec3 tI = sI.dx0ds.normalized(), tJ = sJ.dx0ds.normalized();
+    Vec3 n = tI.cross(tJ);
+    if (n.norm() > 1e-12) n.normalize(); else n = sI.g1.normalized();
+    if (!particle(sI, fs.radius[I], sJ.x0 - sI.x0, e.xiI) && !particle(sI, fs.radius[I], -n, e.xiI))
+      e.xiI[0] = -fs.radius[I], e.xiI[1] = 0;
+    if (!particle(sJ, fs.radius[J], sI.x0 - sJ.x0, e.xiJ) && !particle(sJ, fs.radius[J], n, e.xiJ))
+      e.xiJ[0] = fs.radius[J], e.xiJ[1] = 0;
+    // eq. 10
+    e.theta = std::acos(std::min(1.0, std::abs(tI.dot(tJ))));
+    const double w = std::clamp((e.theta - p.thetaParallel) / (p.thetaCross - p.thetaParallel), 0.0, 1.0);
+    const Vec3 d = sI.x0 - sJ.x0;
+    Vec3 nc = tI.cross(tJ);
+    if (nc.norm() > 0) nc.normalize();
+    if (nc.dot(d) < 0) nc = -nc;
+    e.normal = w == 1 ? nc : Vec3((w * nc + (1 - w) * d.normalized()).normalized());
+    const Vec3 pI = sI.x0 + e.xiI[0] * sI.g1 + e.xiI[1] * sI.g2;
+    const Vec3 pJ = sJ.x0 + e.xiJ[0] * sJ.g1 + e.xiJ[1] * sJ.g2;
+    e.gap = (pI - pJ).dot(e.normal);  // eq. 11
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace fibra::reference

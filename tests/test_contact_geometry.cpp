@@ -1,0 +1,272 @@
+// Contact detection geometry: the closest-point kernel, particles on deformed section outlines,
+// normals and gaps (unit, from J to I, odd in the swap of I and J), the documented degenerate
+// cases, and the parameter defaults.
+#include "contact_fixtures.h"
+#include "systems/contact_detection.h"
+#include "systems/contact_geometry.h"
+#include "systems/contact_normals.h"
+
+#include <doctest/doctest.h>
+
+#include <random>
+
+using namespace fibra;
+
+namespace {
+
+struct Detected {
+  ContactCache cache;
+  ZoneStore zones;
+  ContactElementStore el;
+};
+
+void detect(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p, Detected& d) {
+  detectContacts(fs, q, p, d.cache, d.zones, d.el);
+}
+
+ContactParams defaults(const FibreStore& fs) { return resolveContactParams(fs, ContactDef{}); }
+
+bool finite(const ContactElementStore& el) {
+  for (Index e = 0; e < el.size(); ++e)
+    if (!el.normal[e].allFinite() || !std::isfinite(el.gap[e]) || !std::isfinite(el.sI[e]) ||
+        !std::isfinite(el.sJ[e]) || !std::isfinite(el.xiI1[e] + el.xiI2[e] + el.xiJ1[e] + el.xiJ2[e]) ||
+        !std::isfinite(el.theta[e]) || !std::isfinite(el.crossWeight[e]))
+      return false;
+  return true;
+}
+
+FibreStore pair(const FibreDef& a, const FibreDef& b) {
+  FibreStore fs;
+  fixtures::add(fs, a);
+  fixtures::add(fs, b);
+  return fs;
+}
+
+}  // namespace
+
+TEST_CASE("closest point on a quadratic element is the global minimum over the element") {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int twoMinima = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double curl = trial % 2 ? 2.0 : 0.2;  // strongly curved elements have two local minima
+    const CentrelinePolynomial P{Vec3(u(rng), u(rng), u(rng)), Vec3(u(rng), u(rng), u(rng)),
+                                 curl * Vec3(u(rng), u(rng), u(rng))};
+    const Vec3 p(u(rng), u(rng), u(rng));
+    const double z0 = trial % 3 ? -1 : -0.3 + 0.2 * u(rng), z1 = 1;
+    const ClosestPoint c = closestOnPolynomial(P, p, z0, z1);
+    auto D = [&](double z) { return (P.a + z * P.b + z * z * P.c - p).squaredNorm(); };
+    double best = 1e300, zBest = 0;
+    int localMinima = 0;
+    const int n = 20000;
+    for (int i = 0; i <= n; ++i) {
+      const double z = z0 + (z1 - z0) * i / n, d = D(z);
+      if (d < best) best = d, zBest = z;
+      if (i > 0 && i < n && d < D(z0 + (z1 - z0) * (i - 1) / n) && d < D(z0 + (z1 - z0) * (i + 1) / n))
+        ++localMinima;
+    }
+    twoMinima += localMinima >= 2;
+    CAPTURE(trial);
+    CHECK(c.z >= z0);
+    CHECK(c.z <= z1);
+    CHECK(std::abs(c.dist2 - D(c.z)) <= 1e-14 * (1 + c.dist2));
+    CHECK(c.dist2 <= best + 1e-12);  // never worse than the sampled minimum
+    CHECK(std::abs(c.z - zBest) <= 1e-3 + (std::abs(best - c.dist2) < 1e-9 ? 2.0 : 0.0));
+  }
+  CHECK(twoMinima >= 50);  // the hard case is exercised
+}
+
+TEST_CASE("particles lie on the deformed section outlines, facing the other section") {
+  const FibreStore fs = fixtures::crossing(31);
+  const Eigen::VectorXd q = fixtures::deformed(fs, 31, 0.01);  // elliptical, sheared sections
+  Detected d;
+  detect(fs, q, defaults(fs), d);
+  REQUIRE(d.el.size() >= 20);
+  int checked = 0;
+  for (Index e = 0; e < d.el.size(); ++e) {
+    for (int side = 0; side < 2; ++side) {
+      const Index f = side ? d.el.fibreJ[e] : d.el.fibreI[e], o = side ? d.el.fibreI[e] : d.el.fibreJ[e];
+      const double s = side ? d.el.sJ[e] : d.el.sI[e], so = side ? d.el.sI[e] : d.el.sJ[e];
+      const double xi1 = side ? d.el.xiJ1[e] : d.el.xiI1[e], xi2 = side ? d.el.xiJ2[e] : d.el.xiI2[e];
+      const Section c = sectionAt(fs, q, locate(fs, f, s)), other = sectionAt(fs, q, locate(fs, o, so));
+      CHECK(std::hypot(xi1, xi2) == doctest::Approx(fs.radius[f]).epsilon(1e-12));
+      // the particle x0 + xi1 g1 + xi2 g2 lies in the section plane along the projection of
+      // the direction to the other centre (plane normal n = g1 x g2)
+      const Vec3 r = xi1 * c.g1 + xi2 * c.g2, n = c.g1.cross(c.g2).normalized();
+      const Vec3 d0 = other.x0 - c.x0, proj = d0 - d0.dot(n) * n;
+      if (proj.norm() < 1e-6 * d0.norm()) continue;
+      CHECK(r.cross(proj).norm() <= 1e-9 * r.norm() * proj.norm());
+      CHECK(r.dot(proj) > 0);
+      CHECK(std::abs(r.dot(n)) <= 1e-12 * r.norm());
+      ++checked;
+    }
+  }
+  CHECK(checked >= 40);
+}
+
+TEST_CASE("normals are unit and point from J to I; swapping I and J flips N and keeps gN") {
+  for (unsigned seed : {41u, 42u}) {
+    const FibreStore fs = seed == 41 ? fixtures::crossing(seed) : fixtures::nearlyParallel(seed);
+    const Eigen::VectorXd q = fixtures::deformed(fs, seed, 0.005);
+    const ContactParams p = defaults(fs);
+    Detected d;
+    detect(fs, q, p, d);
+    REQUIRE(d.el.size() >= 20);
+    ContactElementStore again = d.el, swapped = d.el;
+    updateNormalsAndGaps(fs, q, p, again, nullptr);  // loop B at the same state: same values
+    std::swap(swapped.fibreI, swapped.fibreJ);
+    std::swap(swapped.sI, swapped.sJ);
+    std::swap(swapped.xiI1, swapped.xiJ1);
+    std::swap(swapped.xiI2, swapped.xiJ2);
+    updateNormalsAndGaps(fs, q, p, swapped, nullptr);
+    for (Index e = 0; e < d.el.size(); ++e) {
+      const Vec3 x0I = sectionAt(fs, q, locate(fs, d.el.fibreI[e], d.el.sI[e])).x0;
+      const Vec3 x0J = sectionAt(fs, q, locate(fs, d.el.fibreJ[e], d.el.sJ[e])).x0;
+      CHECK(d.el.normal[e].norm() == doctest::Approx(1).epsilon(1e-12));
+      CHECK(d.el.normal[e].dot(x0I - x0J) >= -1e-12);
+      CHECK((again.normal[e] - d.el.normal[e]).norm() <= 1e-14);
+      CHECK(std::abs(again.gap[e] - d.el.gap[e]) <= 1e-14);
+      CHECK((swapped.normal[e] + d.el.normal[e]).norm() <= 1e-14);
+      CHECK(std::abs(swapped.gap[e] - d.el.gap[e]) <= 1e-14);
+      CHECK(swapped.theta[e] == doctest::Approx(d.el.theta[e]).epsilon(1e-14));
+    }
+  }
+}
+
+TEST_CASE("exactly parallel fibres: one zone along the overlap, zero gaps, centre-line normals") {
+  const double R = 0.05;
+  const FibreStore fs = pair(fixtures::polylineFibre("a", R, 8, 2, {Vec3(0, 0, 0), Vec3(1.6, 0, 0)}),
+                             fixtures::polylineFibre("b", R, 8, 2, {Vec3(0, 2 * R, 0), Vec3(1.6, 2 * R, 0)}));
+  Detected d;
+  detect(fs, fs.q, defaults(fs), d);
+  REQUIRE(d.zones.size() == 1);
+  CHECK(d.zones.sI1[0] == 0);
+  CHECK(d.zones.sI2[0] == doctest::Approx(1.6));
+  CHECK(d.zones.sJ2[0] == doctest::Approx(1.6));
+  CHECK(d.zones.minDistance[0] == doctest::Approx(2 * R));
+  CHECK(d.zones.elementCount[0] == 16);  // floor(2 L_int / h) = 2 per element
+  REQUIRE(finite(d.el));
+  for (Index e = 0; e < d.el.size(); ++e) {
+    CHECK(d.el.fallback[e] == 0);
+    CHECK(d.el.theta[e] == 0);
+    CHECK(d.el.crossWeight[e] == 0);
+    CHECK((d.el.normal[e] - Vec3(0, -1, 0)).norm() <= 1e-12);  // from J (y = 2R) to I (y = 0)
+    CHECK(std::abs(d.el.gap[e]) <= 1e-12);
+    CHECK(d.el.sI[e] == doctest::Approx(d.el.sJ[e]).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("coincident centrelines: full penetration along N from the particles, no NaN") {
+  const double R = 0.05;
+  const FibreDef f = fixtures::polylineFibre("a", R, 6, 2, {Vec3(0, 0, 0), Vec3(1.2, 0, 0)});
+  const FibreStore fs = pair(f, f);
+  Detected d;
+  detect(fs, fs.q, defaults(fs), d);
+  REQUIRE(d.zones.size() == 1);
+  CHECK(d.zones.minDistance[0] == 0);
+  REQUIRE(d.el.size() == 12);
+  REQUIRE(finite(d.el));
+  for (Index e = 0; e < d.el.size(); ++e) {
+    CHECK((d.el.fallback[e] & (kFallbackParticleI | kFallbackParticleJ | kFallbackNormal)) ==
+          (kFallbackParticleI | kFallbackParticleJ | kFallbackNormal));
+    CHECK(d.el.normal[e].norm() == doctest::Approx(1));
+    CHECK(d.el.gap[e] == doctest::Approx(-2 * R));
+  }
+}
+
+TEST_CASE("a fibre ending inside a zone: its sections stop at its ends, by the closest point") {
+  const double R = 0.05;
+  const FibreStore fs = pair(fixtures::polylineFibre("long", R, 10, 2, {Vec3(0, 0, 0), Vec3(2, 0, 0)}),
+                             fixtures::polylineFibre("short", R, 4, 2, {Vec3(0.6, 2.2 * R, 0), Vec3(1.4, 2.2 * R, 0)}));
+  Detected d;
+  detect(fs, fs.q, defaults(fs), d);
+  REQUIRE(d.zones.size() == 1);
+  // the zone on the long fibre runs past the short one's ends while its ends stay within Delta
+  CHECK(d.zones.sI1[0] < 0.6);
+  CHECK(d.zones.sI2[0] > 1.4);
+  CHECK(d.zones.sJ1[0] == 0);
+  CHECK(d.zones.sJ2[0] == doctest::Approx(0.8));
+  REQUIRE(finite(d.el));
+  int ended = 0;
+  for (Index e = 0; e < d.el.size(); ++e) {
+    CHECK(d.el.sJ[e] >= 0);
+    CHECK(d.el.sJ[e] <= 0.8 + 1e-12);
+    if (d.el.fallback[e] & kFallbackSectionJ) {
+      ++ended;
+      CHECK((d.el.sJ[e] == 0 || d.el.sJ[e] == doctest::Approx(0.8)));
+    } else {
+      CHECK(d.el.gap[e] == doctest::Approx(0.2 * R));
+    }
+  }
+  CHECK(ended >= 2);  // both ends
+}
+
+TEST_CASE("perpendicular crossing: J's sections are the closest points, N along t_I x t_J") {
+  const double R = 0.05;
+  const FibreStore fs = pair(fixtures::polylineFibre("x", R, 6, 2, {Vec3(0, 0, 0), Vec3(1.2, 0, 0)}),
+                             fixtures::polylineFibre("y", R, 6, 2, {Vec3(0.55, -0.6, 2.1 * R), Vec3(0.55, 0.6, 2.1 * R)}));
+  Detected d;
+  detect(fs, fs.q, defaults(fs), d);
+  REQUIRE(d.zones.size() == 1);
+  CHECK(d.zones.sJ1[0] == doctest::Approx(0.6));  // every test point projects on the crossing
+  CHECK(d.zones.sJ2[0] == doctest::Approx(0.6));
+  REQUIRE(d.el.size() >= 1);
+  REQUIRE(finite(d.el));
+  for (Index e = 0; e < d.el.size(); ++e) {
+    CHECK((d.el.fallback[e] & kFallbackSectionJ) != 0);
+    CHECK(d.el.sJ[e] == doctest::Approx(0.6).epsilon(1e-12));
+    CHECK(d.el.crossWeight[e] == 1);
+    CHECK((d.el.normal[e] - Vec3(0, 0, -1)).norm() <= 1e-12);  // I lies below J
+  }
+  const Index mid = d.zones.elementCount[0] / 2;  // elements straddle the crossing symmetrically
+  CHECK(std::abs(d.el.sI[mid] - 0.55) <= 0.5 * 1.2 / 6);
+}
+
+TEST_CASE("zero-length zone: one proximate test point gives one element at zeta = 1/2") {
+  const double R = 0.05;  // test points every 2R = 0.1 on x; J crosses over x = 0.6 at 2.95 R
+  const FibreStore fs = pair(fixtures::polylineFibre("x", R, 6, 2, {Vec3(0, 0, 0), Vec3(1.2, 0, 0)}),
+                             fixtures::polylineFibre("y", R, 6, 2, {Vec3(0.6, -0.6, 2.95 * R), Vec3(0.6, 0.6, 2.95 * R)}));
+  Detected d;
+  detect(fs, fs.q, defaults(fs), d);
+  REQUIRE(d.zones.size() == 1);
+  CHECK(d.zones.testPoints[0] == 1);
+  CHECK(d.zones.sI1[0] == d.zones.sI2[0]);
+  CHECK(d.zones.intermediateLength[0] == 0);
+  REQUIRE(d.el.size() == 1);
+  REQUIRE(finite(d.el));
+  CHECK(d.el.zeta[0] == 0.5);
+  CHECK((d.el.fallback[0] & kFallbackTangent) != 0);
+  CHECK(d.el.sI[0] == doctest::Approx(0.6));
+  CHECK(d.el.sJ[0] == doctest::Approx(0.6));
+  CHECK(d.el.gap[0] == doctest::Approx(0.95 * R));
+}
+
+TEST_CASE("parameter defaults follow the radii and element lengths; given values win") {
+  FibreStore fs = pair(fixtures::polylineFibre("a", 0.05, 5, 2, {Vec3(0, 0, 0), Vec3(1, 0, 0)}),
+                       fixtures::polylineFibre("b", 0.02, 4, 2, {Vec3(0, 1, 0), Vec3(2, 1, 0)}));
+  const ContactParams p = defaults(fs);
+  CHECK(proximityDistance(p, 0, 1) == doctest::Approx(1.5 * (0.05 + 0.02)));
+  CHECK(testIntervalsPerElement(fs, p, 0, 1) == 3);  // h = 0.2: l_zp = min(0.1, 0.07) -> 0.2 / 3
+  CHECK(testIntervalsPerElement(fs, p, 0, 0) == 2);  // min(0.1, 0.1)
+  CHECK(p.thetaParallel == doctest::Approx(5 * std::numbers::pi / 180));
+  CHECK(p.thetaCross == doctest::Approx(20 * std::numbers::pi / 180));
+  CHECK(p.skin == doctest::Approx(0.01));
+  CHECK(p.selfSeparation[0] == doctest::Approx(0.3));  // 6 R
+  CHECK(p.selfSeparation[1] == doctest::Approx(0.5));  // h = 0.5 > 6 R
+  ContactDef def;
+  def.proximityDistance = 0.3;
+  def.testPointSpacing = 0.04;
+  def.thetaCross = 0.5;
+  def.thetaParallel = 0.1;
+  def.skin = 0;
+  const ContactParams g = resolveContactParams(fs, def);
+  CHECK(proximityDistance(g, 0, 1) == doctest::Approx(0.3));
+  CHECK(testIntervalsPerElement(fs, g, 0, 1) == 5);
+  CHECK(g.thetaCross == 0.5);
+  CHECK(g.skin == 0);
+  def.thetaParallel = 0.6;
+  CHECK_THROWS_AS(resolveContactParams(fs, def), SceneError);
+  def.thetaParallel = 0.1;
+  def.skin = -1;
+  CHECK_THROWS_AS(resolveContactParams(fs, def), SceneError);
+}

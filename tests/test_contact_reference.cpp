@@ -1,0 +1,160 @@
+// Contact detection against the brute-force reference (tests/contact_reference.h): the same
+// zones (same intervals within 1e-9 mm) and the same contact elements, on seeded assemblies of
+// every kind: straight, curved, crossing, nearly parallel, touching at element ends, mixed orders.
+#include "contact_fixtures.h"
+#include "contact_reference.h"
+#include "systems/contact_detection.h"
+
+#include <doctest/doctest.h>
+
+using namespace fibra;
+
+namespace {
+
+struct Coverage {
+  int zones = 0, elements = 0, checkedElements = 0, zeroLength = 0, sectionFallbacks = 0;
+  int tangentFallbacks = 0, crossing = 0, parallel = 0, blended = 0;
+};
+
+void compareElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
+                     const ZoneStore& zones, const ContactElementStore& el,
+                     const reference::Zone& rz, Index z, Coverage& cov) {
+  bool ambiguousCount = false;
+  const std::vector<reference::Element> ref = reference::elements(fs, q, p, rz, ambiguousCount);
+  if (ambiguousCount) return;
+  REQUIRE(zones.elementCount[z] == Index(ref.size()));
+  for (Index k = 0; k < zones.elementCount[z]; ++k) {
+    const Index e = zones.firstElement[z] + k;
+    const reference::Element& r = ref[k];
+    ++cov.elements;
+    if (r.ambiguous) continue;
+    ++cov.checkedElements;
+    CAPTURE(z);
+    CAPTURE(k);
+    CHECK(el.zone[e] == z);
+    CHECK((el.fallback[e] & 7) == r.fallback);
+    CHECK(std::abs(el.sI[e] - r.sI) <= 1e-8);
+    CHECK(std::abs(el.sJ[e] - r.sJ) <= 1e-8);
+    CHECK(std::abs(el.xiI1[e] - r.xiI[0]) <= 1e-8);
+    CHECK(std::abs(el.xiI2[e] - r.xiI[1]) <= 1e-8);
+    CHECK(std::abs(el.xiJ1[e] - r.xiJ[0]) <= 1e-8);
+    CHECK(std::abs(el.xiJ2[e] - r.xiJ[1]) <= 1e-8);
+    CHECK((el.normal[e] - r.normal).norm() <= 1e-6);
+    CHECK(std::abs(el.gap[e] - r.gap) <= 1e-8);
+    CHECK(std::abs(el.theta[e] - r.theta) <= 1e-6);
+    cov.sectionFallbacks += (r.fallback & 3) != 0;
+    cov.tangentFallbacks += (r.fallback & kFallbackTangent) != 0;
+    cov.crossing += el.crossWeight[e] == 1;
+    cov.parallel += el.crossWeight[e] == 0;
+    cov.blended += el.crossWeight[e] > 0 && el.crossWeight[e] < 1;
+  }
+}
+
+Coverage compareWithReference(const FibreStore& fs, const Eigen::VectorXd& q,
+                              const ContactParams& p) {
+  ContactCache cache;
+  ZoneStore zones;
+  ContactElementStore el;
+  detectContacts(fs, q, p, cache, zones, el);
+  const reference::Detection ref = reference::detect(fs, q, p);
+  REQUIRE(ref.ambiguousPoints == 0);
+  REQUIRE(zones.size() == Index(ref.zones.size()));
+  Coverage cov;
+  for (Index z = 0; z < zones.size(); ++z) {
+    const reference::Zone& r = ref.zones[z];
+    CAPTURE(z);
+    REQUIRE(zones.fibreI[z] == r.I);
+    REQUIRE(zones.fibreJ[z] == r.J);
+    CHECK(zones.sI1[z] == r.sI1);  // the same test-point grid: exact
+    CHECK(zones.sI2[z] == r.sI2);
+    CHECK(std::abs(zones.sJ1[z] - r.sJ1) <= 1e-9);
+    CHECK(std::abs(zones.sJ2[z] - r.sJ2) <= 1e-9);
+    CHECK(std::abs(zones.minDistance[z] - r.minDistance) <= 1e-9);
+    CHECK(zones.testPoints[z] == r.testPoints);
+    cov.zeroLength += r.testPoints == 1;
+    compareElements(fs, q, p, zones, el, r, z, cov);
+  }
+  cov.zones = zones.size();
+  return cov;
+}
+
+ContactParams defaults(const FibreStore& fs) { return resolveContactParams(fs, ContactDef{}); }
+
+}  // namespace
+
+TEST_CASE("contact detection matches the brute-force reference: straight fibres") {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    CAPTURE(seed);
+    const FibreStore fs = fixtures::straight(seed);
+    const Coverage cov = compareWithReference(fs, fs.q, defaults(fs));
+    CHECK(cov.zones >= 5);
+    CHECK(cov.checkedElements >= 0.9 * cov.elements);
+  }
+}
+
+TEST_CASE("contact detection matches the brute-force reference: curved and deformed fibres") {
+  for (unsigned seed : {4u, 5u}) {
+    CAPTURE(seed);
+    const FibreStore fs = fixtures::curved(seed);
+    const ContactParams p = defaults(fs);
+    const Coverage a = compareWithReference(fs, fs.q, p);
+    const Coverage b = compareWithReference(fs, fixtures::deformed(fs, seed, 0.02), p);
+    CHECK(a.zones >= 5);
+    CHECK(b.zones >= 5);
+  }
+}
+
+TEST_CASE("contact detection matches the brute-force reference: crossings at every angle") {
+  Coverage total;
+  for (unsigned seed : {6u, 7u, 8u}) {
+    CAPTURE(seed);
+    const FibreStore fs = fixtures::crossing(seed);
+    const Coverage c = compareWithReference(fs, fs.q, defaults(fs));
+    total.zones += c.zones;
+    total.sectionFallbacks += c.sectionFallbacks;
+    total.crossing += c.crossing;
+    total.blended += c.blended;
+  }
+  CHECK(total.zones >= 20);
+  CHECK(total.sectionFallbacks > 0);  // steep crossings: J's section by the closest point
+  CHECK(total.crossing > 0);
+}
+
+TEST_CASE("contact detection matches the brute-force reference: nearly parallel fibres") {
+  Coverage total;
+  for (unsigned seed : {9u, 10u}) {
+    CAPTURE(seed);
+    const FibreStore fs = fixtures::nearlyParallel(seed);
+    const Coverage c = compareWithReference(fs, fixtures::deformed(fs, seed, 0.005, false), defaults(fs));
+    total.zones += c.zones;
+    total.parallel += c.parallel;
+    total.blended += c.blended;
+    total.checkedElements += c.checkedElements;
+  }
+  CHECK(total.zones >= 20);
+  CHECK(total.parallel > 0);
+  CHECK(total.checkedElements >= 200);
+}
+
+TEST_CASE("contact detection matches the brute-force reference: contacts at element ends") {
+  const FibreStore fs = fixtures::elementEnds();
+  const Coverage c = compareWithReference(fs, fs.q, defaults(fs));
+  CHECK(c.zones >= 10);
+  CHECK(c.zeroLength >= 1);  // the end-to-end pair meets at one test point
+}
+
+TEST_CASE("contact detection matches the brute-force reference: mixed orders and self-contact") {
+  for (unsigned seed : {11u, 12u}) {
+    CAPTURE(seed);
+    const FibreStore fs = fixtures::mixedOrders(seed);
+    compareWithReference(fs, fixtures::deformed(fs, seed, 0.01), defaults(fs));
+  }
+  FibreStore coil;  // a tight helix whose turns touch: self-contact zones between turns
+  fixtures::add(coil, fixtures::helixFibre(0.05, 24, Vec3::Zero(), Vec3::UnitZ(), 0.3, 0.11, 3, 0));
+  ContactDef def;
+  def.selfContact = true;
+  const ContactParams p = resolveContactParams(coil, def);
+  const Coverage c = compareWithReference(coil, coil.q, p);
+  CHECK(c.zones >= 1);
+  CHECK(c.elements >= 20);
+}
