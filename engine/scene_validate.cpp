@@ -6,6 +6,7 @@
 
 #include "engine/json_reader.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -78,8 +79,14 @@ size_t resolve(const Names& names, const std::string& name, const char* what, co
   std::vector<std::string> known;
   for (const auto& [n, i] : names) known.push_back(n);
   const std::string close = json_reader::closestKey(name, known);
-  fail(path, std::string("unknown ") + what + " '" + name + "'" +
-                 (close.empty() ? "" : " (did you mean '" + close + "'?)"));
+  std::string hint;
+  if (!close.empty()) {
+    hint = " (did you mean '" + close + "'?)";
+  } else if (!known.empty() && known.size() <= 8) {
+    for (const std::string& k : known) hint += (hint.empty() ? " (known: " : ", ") + k;
+    hint += ")";
+  }
+  fail(path, std::string("unknown ") + what + " '" + name + "'" + hint);
 }
 
 int nodeCount(const FibreDef& f) { return f.order * f.elements + 1; }

@@ -43,7 +43,8 @@ struct HistoryColumns {
 // residual (relative), wall_s (seconds of the increment).
 HistoryColumns incrementColumns();
 // Per boundary condition: reaction.G.fx .fy .fz (N) and .mx .my .mz (N mm, about
-// output.moment_point), G its group ("G#i" for boundary condition i when groups repeat).
+// output.moment_point), World::reaction: what the held DOFs exert on the fibres, balancing the
+// loads. G is the group ("G#i" for boundary condition i when groups repeat).
 HistoryColumns reactionColumns(const World& world);
 // Per tool T: tool.T.fx .fy .fz, the force the fibres exert on it (N).
 HistoryColumns toolColumns(const World& world);
