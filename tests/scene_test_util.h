@@ -94,11 +94,26 @@ inline pid_t startFibra(const std::vector<std::string>& args, const std::string&
   return pid;
 }
 
-// Exit status of a finished child (128 + signal when killed).
+// Exit status of a child; 256 + the signal when a signal ended it (so that an exit status of
+// 130 and death by SIGINT differ).
+inline int statusOf(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 256 + WTERMSIG(status); }
+
 inline int waitStatus(pid_t pid) {
   int status = 0;
   ::waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return statusOf(status);
+}
+
+// Exit status of a child within `seconds`; past that it is killed and -1 returned.
+inline int waitStatusWithin(pid_t pid, double seconds) {
+  for (int waited = 0; waited < seconds * 1000; waited += 5) {
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) return statusOf(status);
+    ::usleep(5000);
+  }
+  ::kill(pid, SIGKILL);
+  waitStatus(pid);
+  return -1;
 }
 
 struct RunResult {
@@ -109,7 +124,7 @@ struct RunResult {
 inline RunResult runFibra(const std::vector<std::string>& args, const TempDir& scratch) {
   fs::create_directories(scratch.path());
   const std::string log = scratch / "fibra.log";
-  const int status = waitStatus(startFibra(args, log));
+  const int status = waitStatusWithin(startFibra(args, log), 120);
   return {status, readFile(log)};
 }
 

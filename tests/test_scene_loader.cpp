@@ -286,7 +286,7 @@ TEST_CASE("validateScene accepts a scene built in code and names fields as the f
   SceneDef s;
   s.materials.push_back({"m", 4000, 0.3, 1, 1});
   FibreDef f;
-  f.name = "b";
+  f.name = std::string("b");
   f.material = "m";
   f.radius = 0.1;
   f.elements = 4;
