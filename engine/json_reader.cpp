@@ -96,8 +96,8 @@ Json parse(const std::string& text) {
     const size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
     if (at == std::string::npos || colon == std::string::npos)
       throw SceneError("byte " + std::to_string(e.byte) + ": malformed JSON: " + what);
-    throw SceneError(what.substr(at + 15, colon - at - 15) + ": malformed JSON: " +
-                     what.substr(colon + 2));
+    throw SceneError(what.substr(at + 15, colon - at - 15) +
+                     ": malformed JSON: " + what.substr(colon + 2));
   }
   if (!keys.duplicate().empty()) fail(keys.duplicate(), "duplicate field");
   return j;

@@ -78,7 +78,8 @@ int positiveInt(const std::string& text, const std::string& option) {
     v = std::stoi(text, &used);
   } catch (const std::exception&) {
   }
-  if (used != text.size() || v < 1) throw UsageError(option + ": expected a positive integer, got '" + text + "'");
+  if (used != text.size() || v < 1)
+    throw UsageError(option + ": expected a positive integer, got '" + text + "'");
   return v;
 }
 
@@ -90,9 +91,12 @@ Options parseRun(int argc, char** argv) {
     if (a == "--out" || a == "--threads" || a == "--trace") {
       if (!hasValue) throw UsageError(a + ": missing value");
       const std::string v = argv[++i];
-      if (a == "--out") o.out = v;
-      else if (a == "--threads") o.threads = positiveInt(v, a);
-      else o.trace = v;
+      if (a == "--out")
+        o.out = v;
+      else if (a == "--threads")
+        o.threads = positiveInt(v, a);
+      else
+        o.trace = v;
     } else if (a.starts_with("-")) {
       throw UsageError("unknown option '" + a + "'");
     } else if (o.scene.empty()) {
@@ -122,9 +126,11 @@ void printIteration(const Progress& p, int steps) {
 }
 
 void printIncrement(const StepReport& r, const SceneDef& scene) {
-  std::fprintf(stderr, "step %d/%zu  increment %d/%d  t = %.6g  converged: %d iterations, %d cutbacks, "
-               "residual %.3e, %.3f s\n", r.step + 1, scene.steps.size(), r.increment,
-               scene.steps[r.step].increments, r.time, r.iterations, r.cutbacks, r.residual, r.timings.total);
+  std::fprintf(stderr,
+               "step %d/%zu  increment %d/%d  t = %.6g  converged: %d iterations, %d cutbacks, "
+               "residual %.3e, %.3f s\n",
+               r.step + 1, scene.steps.size(), r.increment, scene.steps[r.step].increments, r.time,
+               r.iterations, r.cutbacks, r.residual, r.timings.total);
 }
 
 // The run's output files, as the scene's output section asks.
@@ -132,7 +138,8 @@ class Outputs {
  public:
   Outputs(const std::string& dir, const World& world) : dir_(dir), def_(world.scene().output) {
     if (def_.vtu) vtu_.emplace(dir);
-    if (def_.history) history_.emplace((fs::path(dir) / "history.csv").string(), standardHistoryColumns(world));
+    if (def_.history)
+      history_.emplace((fs::path(dir) / "history.csv").string(), standardHistoryColumns(world));
     frame(world);
   }
 
@@ -145,7 +152,8 @@ class Outputs {
   // The last converged state: a frame if it has none yet, the final state, the history closed.
   void finish(const World& world) {
     if (world.time() != framed_) frame(world);
-    if (def_.finalState) writeState((fs::path(dir_) / "final_state.csv").string(), world.fibres(), world.fibres().q);
+    if (def_.finalState)
+      writeState((fs::path(dir_) / "final_state.csv").string(), world.fibres(), world.fibres().q);
     if (history_) history_->close();
   }
 
@@ -177,21 +185,25 @@ int solve(World& world, Outputs& outputs) {
     if (r.status == StepStatus::Finished) break;
     outputs.finish(world);
     if (r.status == StepStatus::Cancelled) {
-      std::fprintf(stderr, "fibra: interrupted; wrote the last converged state, t = %g\n", world.time());
+      std::fprintf(stderr, "fibra: interrupted; wrote the last converged state, t = %g\n",
+                   world.time());
       return kInterrupted;
     }
-    std::fprintf(stderr, "fibra: step %d/%zu, increment %d failed: %s\nfibra: wrote the last converged state, t = %g\n",
+    std::fprintf(stderr,
+                 "fibra: step %d/%zu, increment %d failed: %s\nfibra: wrote the last converged "
+                 "state, t = %g\n",
                  r.step + 1, scene.steps.size(), r.increment, r.message.c_str(), world.time());
     return kFailed;
   }
   outputs.finish(world);
-  std::fprintf(stderr, "fibra: solved: %d increments, %d Newton iterations, t = %g\n", increments, iterations, world.time());
+  std::fprintf(stderr, "fibra: solved: %d increments, %d Newton iterations, t = %g\n", increments,
+               iterations, world.time());
   return kSolved;
 }
 
 void writeTrace(const Trace& trace, const std::string& path) {
-  for (const auto& [target, write] :
-       {std::pair{path, &Trace::writeChromeJson}, std::pair{stageCsvPath(path), &Trace::writeStageCsv}}) {
+  for (const auto& [target, write] : {std::pair{path, &Trace::writeChromeJson},
+                                      std::pair{stageCsvPath(path), &Trace::writeStageCsv}}) {
     (trace.*write)(target + ".part");
     fs::rename(target + ".part", target);
   }
@@ -223,10 +235,11 @@ int run(const Options& o) {
   std::error_code ec;
   fs::create_directories(o.out, ec);
   if (ec) {
-    std::fprintf(stderr, "fibra: error: cannot create '%s': %s\n", o.out.c_str(), ec.message().c_str());
+    std::fprintf(stderr, "fibra: error: cannot create '%s': %s\n", o.out.c_str(),
+                 ec.message().c_str());
     return kFailed;
   }
-  struct sigaction action{};
+  struct sigaction action {};
   action.sa_handler = onInterrupt;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
@@ -246,7 +259,8 @@ int main(int argc, char** argv) {
     return kSolved;
   }
   try {
-    if (command != "run") throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
+    if (command != "run")
+      throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
     return run(parseRun(argc, argv));
   } catch (const UsageError& e) {
     std::fprintf(stderr, "fibra: %s\n%.*s(fibra --help for more)\n", e.what(),

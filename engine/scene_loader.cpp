@@ -16,7 +16,8 @@ namespace scene_sections {
 using namespace json_reader;
 
 MaterialDef readMaterial(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"name", "young_modulus", "poisson_ratio", "bending_factor", "torsion_factor"});
+  const Fields f(j, path,
+                 {"name", "young_modulus", "poisson_ratio", "bending_factor", "torsion_factor"});
   MaterialDef m;
   m.name = f.string("name");
   m.youngModulus = f.number("young_modulus");
@@ -37,9 +38,12 @@ std::vector<Vec3> readPoints(const Fields& f) {
 
 GeometryDef readGeometry(const Json& j, const std::string& path) {
   GeometryDef g;
-  g.kind = Fields(j, path, {"type", "points", "director", "origin", "axis", "radius", "pitch", "turns", "phase"})
-               .choice<GeometryKind>("type", {{"line", GeometryKind::Line}, {"polyline", GeometryKind::Polyline},
-                                {"helix", GeometryKind::Helix}});
+  g.kind =
+      Fields(j, path,
+             {"type", "points", "director", "origin", "axis", "radius", "pitch", "turns", "phase"})
+          .choice<GeometryKind>("type", {{"line", GeometryKind::Line},
+                                         {"polyline", GeometryKind::Polyline},
+                                         {"helix", GeometryKind::Helix}});
   if (g.kind == GeometryKind::Helix) {
     const Fields f(j, path, {"type", "origin", "axis", "radius", "pitch", "turns", "phase"},
                    "a helix geometry");
@@ -60,13 +64,16 @@ GeometryDef readGeometry(const Json& j, const std::string& path) {
 
 BeamIntegration readIntegration(const Json& j, const std::string& path) {
   BeamIntegration r;
-  r.section = Fields(j, path, {"axial", "section", "rings", "sectors"})
-                  .choice("section", {{"moments", SectionRule::Moments},
-                                      {"quadrature", SectionRule::Quadrature}}, r.section);
+  r.section =
+      Fields(j, path, {"axial", "section", "rings", "sectors"})
+          .choice("section",
+                  {{"moments", SectionRule::Moments}, {"quadrature", SectionRule::Quadrature}},
+                  r.section);
   const Fields f = r.section == SectionRule::Quadrature
                        ? Fields(j, path, {"axial", "section", "rings", "sectors"})
                        : Fields(j, path, {"axial", "section"}, "section \"moments\"");
-  r.axial = f.choice("axial", {{"reduced", AxialRule::Reduced}, {"full", AxialRule::Full}}, r.axial);
+  r.axial =
+      f.choice("axial", {{"reduced", AxialRule::Reduced}, {"full", AxialRule::Full}}, r.axial);
   r.rings = f.integer("rings", r.rings);
   r.sectors = f.integer("sectors", r.sectors);
   return r;
@@ -75,7 +82,8 @@ BeamIntegration readIntegration(const Json& j, const std::string& path) {
 }  // namespace
 
 FibreDef readFibre(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"name", "material", "radius", "elements", "order", "geometry", "integration"});
+  const Fields f(j, path,
+                 {"name", "material", "radius", "elements", "order", "geometry", "integration"});
   FibreDef d;
   d.name = f.string("name");
   d.material = f.string("material");
@@ -83,7 +91,8 @@ FibreDef readFibre(const Json& j, const std::string& path) {
   d.elements = f.integer("elements");
   d.order = f.integer("order", d.order);
   d.geometry = readGeometry(f.at("geometry"), f.path("geometry"));
-  if (f.has("integration")) d.integration = readIntegration(f.at("integration"), f.path("integration"));
+  if (f.has("integration"))
+    d.integration = readIntegration(f.at("integration"), f.path("integration"));
   return d;
 }
 
@@ -98,8 +107,9 @@ GroupDef readGroup(const Json& j, const std::string& path) {
 }
 
 StepDef readStep(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"name", "end_time", "increments", "max_iterations", "force_tolerance",
-                           "increment_tolerance", "max_cutbacks", "line_search", "output_every"});
+  const Fields f(j, path,
+                 {"name", "end_time", "increments", "max_iterations", "force_tolerance",
+                  "increment_tolerance", "max_cutbacks", "line_search", "output_every"});
   StepDef s;
   s.name = f.string("name", s.name);
   s.endTime = f.number("end_time", s.endTime);
@@ -150,9 +160,10 @@ void requireItems(const Fields& f, const char* key) {
 }
 
 SceneDef readScene(const Json& root) {
-  const Fields f(root, "", {"description", "units", "materials", "fibres", "groups", "tables",
-                            "boundary_conditions", "loads", "steps", "contact", "tools",
-                            "stabilisation", "output"});
+  const Fields f(
+      root, "",
+      {"description", "units", "materials", "fibres", "groups", "tables", "boundary_conditions",
+       "loads", "steps", "contact", "tools", "stabilisation", "output"});
   f.string("description", "");
   SceneDef s;
   s.units = f.string("units");
@@ -161,15 +172,17 @@ SceneDef readScene(const Json& root) {
   s.materials = readList<MaterialDef>(f, "materials", readMaterial);
   s.fibres = readList<FibreDef>(f, "fibres", readFibre);
   s.groups = readList<GroupDef>(f, "groups", readGroup);
-  s.bcs = readList<BcDef>(f, "boundary_conditions",
-                          [&](const Json& j, const std::string& at) { return readBc(j, at, tables); });
-  s.loads = readList<LoadDef>(f, "loads",
-                              [&](const Json& j, const std::string& at) { return readLoad(j, at, tables); });
+  s.bcs = readList<BcDef>(f, "boundary_conditions", [&](const Json& j, const std::string& at) {
+    return readBc(j, at, tables);
+  });
+  s.loads = readList<LoadDef>(
+      f, "loads", [&](const Json& j, const std::string& at) { return readLoad(j, at, tables); });
   s.steps = readList<StepDef>(f, "steps", readStep);
   if (f.has("contact")) s.contact = readContact(f.at("contact"), "contact");
-  s.tools = readList<ToolDef>(f, "tools",
-                              [&](const Json& j, const std::string& at) { return readTool(j, at, tables); });
-  if (f.has("stabilisation")) s.stabilisation = readStabilisation(f.at("stabilisation"), "stabilisation");
+  s.tools = readList<ToolDef>(
+      f, "tools", [&](const Json& j, const std::string& at) { return readTool(j, at, tables); });
+  if (f.has("stabilisation"))
+    s.stabilisation = readStabilisation(f.at("stabilisation"), "stabilisation");
   if (f.has("output")) s.output = readOutput(f.at("output"), "output");
   return s;
 }
@@ -187,7 +200,8 @@ SceneDef loadSceneFromString(const std::string& text, const std::string& display
 }
 
 SceneDef loadScene(const std::string& path) {
-  if (std::filesystem::is_directory(path)) throw SceneError(path + ": is a directory, not a scene file");
+  if (std::filesystem::is_directory(path))
+    throw SceneError(path + ": is a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open the scene file");
   std::ostringstream text;

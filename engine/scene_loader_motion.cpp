@@ -31,7 +31,8 @@ TableDef readTable(const Json& j, const std::string& path, const Tables& tables)
   std::vector<std::string> names;
   for (const auto& [n, t] : tables) names.push_back(n);
   const std::string close = closestKey(name, names);
-  fail(path, "unknown table '" + name + "'" + (close.empty() ? "" : " (did you mean '" + close + "'?)"));
+  fail(path,
+       "unknown table '" + name + "'" + (close.empty() ? "" : " (did you mean '" + close + "'?)"));
 }
 
 const std::vector<std::string> kMotionKeys = {"displacement", "table", "rotation"};
@@ -60,10 +61,18 @@ std::vector<std::string> withMotion(std::vector<std::string> keys) {
 
 // DOF names of a "fix": components, or the three of a block.
 void readDofs(const Json& j, const std::string& path, std::array<bool, 9>& dofs) {
-  static const std::pair<const char*, std::vector<int>> kNames[] = {
-      {"x", {X}},     {"y", {Y}},     {"z", {Z}},     {"g1x", {G1X}},     {"g1y", {G1Y}},
-      {"g1z", {G1Z}}, {"g2x", {G2X}}, {"g2y", {G2Y}}, {"g2z", {G2Z}},     {"x0", {X, Y, Z}},
-      {"g1", {G1X, G1Y, G1Z}},        {"g2", {G2X, G2Y, G2Z}}};
+  static const std::pair<const char*, std::vector<int>> kNames[] = {{"x", {X}},
+                                                                    {"y", {Y}},
+                                                                    {"z", {Z}},
+                                                                    {"g1x", {G1X}},
+                                                                    {"g1y", {G1Y}},
+                                                                    {"g1z", {G1Z}},
+                                                                    {"g2x", {G2X}},
+                                                                    {"g2y", {G2Y}},
+                                                                    {"g2z", {G2Z}},
+                                                                    {"x0", {X, Y, Z}},
+                                                                    {"g1", {G1X, G1Y, G1Z}},
+                                                                    {"g2", {G2X, G2Y, G2Z}}};
   forEachItem(j, path, [&](const Json& item, const std::string& at) {
     const std::string name = asString(item, at);
     for (const auto& [n, components] : kNames)
@@ -71,7 +80,8 @@ void readDofs(const Json& j, const std::string& path, std::array<bool, 9>& dofs)
         for (int c : components) dofs[c] = true;
         return;
       }
-    fail(at, "unknown DOF \"" + name + "\" (expected x, y, z, g1x, g1y, g1z, g2x, g2y, g2z, x0, g1 or g2)");
+    fail(at, "unknown DOF \"" + name +
+                 "\" (expected x, y, z, g1x, g1y, g1z, g2x, g2y, g2z, x0, g1 or g2)");
   });
 }
 
@@ -90,7 +100,8 @@ Tables readTables(const Json& j, const std::string& path) {
 BcDef readBc(const Json& j, const std::string& path, const Tables& tables) {
   const Fields f(j, path, withMotion({"type", "group", "dofs"}));
   BcDef b;
-  b.kind = f.choice<BcKind>("type", {{"clamp", BcKind::Clamp}, {"pin", BcKind::Pin}, {"fix", BcKind::Fix}});
+  b.kind = f.choice<BcKind>("type",
+                            {{"clamp", BcKind::Clamp}, {"pin", BcKind::Pin}, {"fix", BcKind::Fix}});
   b.group = f.string("group");
   if (b.kind == BcKind::Fix) {
     if (!f.has("dofs")) fail(f.path("dofs"), "required field missing for type \"fix\"");
@@ -105,8 +116,9 @@ BcDef readBc(const Json& j, const std::string& path, const Tables& tables) {
 LoadDef readLoad(const Json& j, const std::string& path, const Tables& tables) {
   const Fields f(j, path, {"type", "group", "vector", "table"});
   LoadDef l;
-  l.kind = f.choice<LoadKind>("type", {{"force", LoadKind::Force}, {"moment", LoadKind::Moment},
-                             {"line_force", LoadKind::LineForce}});
+  l.kind = f.choice<LoadKind>("type", {{"force", LoadKind::Force},
+                                       {"moment", LoadKind::Moment},
+                                       {"line_force", LoadKind::LineForce}});
   l.group = f.string("group");
   l.vector = f.vec3("vector");
   if (f.has("table")) l.table = readTable(f.at("table"), f.path("table"), tables);
@@ -118,10 +130,14 @@ ToolDef readTool(const Json& j, const std::string& path, const Tables& tables) {
   std::vector<std::string> all = withMotion(common);
   all.insert(all.end(), {"normal", "axis", "radius", "inside"});
   ToolDef t;
-  t.kind = Fields(j, path, all).choice<ToolKind>("type", {{"plane", ToolKind::Plane}, {"cylinder", ToolKind::Cylinder}});
+  t.kind =
+      Fields(j, path, all)
+          .choice<ToolKind>("type", {{"plane", ToolKind::Plane}, {"cylinder", ToolKind::Cylinder}});
   std::vector<std::string> keys = withMotion(common);
-  if (t.kind == ToolKind::Plane) keys.push_back("normal");
-  else keys.insert(keys.end(), {"axis", "radius", "inside"});
+  if (t.kind == ToolKind::Plane)
+    keys.push_back("normal");
+  else
+    keys.insert(keys.end(), {"axis", "radius", "inside"});
   const Fields f(j, path, keys, t.kind == ToolKind::Plane ? "a plane" : "a cylinder");
   t.name = f.string("name");
   t.point = f.vec3("point", t.point);
@@ -139,11 +155,12 @@ ToolDef readTool(const Json& j, const std::string& path, const Tables& tables) {
 }
 
 ContactDef readContact(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"enabled", "proximity_distance", "test_point_spacing", "theta_cross_deg",
-                           "theta_parallel_deg", "self_contact", "self_contact_separation", "skin",
-                           "max_penetration", "regularisation", "initial_penalty", "penalty_change",
-                           "friction", "max_reversible_slip", "friction_tangent",
-                           "max_detection_loops", "max_normal_loops"});
+  const Fields f(
+      j, path,
+      {"enabled", "proximity_distance", "test_point_spacing", "theta_cross_deg",
+       "theta_parallel_deg", "self_contact", "self_contact_separation", "skin", "max_penetration",
+       "regularisation", "initial_penalty", "penalty_change", "friction", "max_reversible_slip",
+       "friction_tangent", "max_detection_loops", "max_normal_loops"});
   constexpr double kRad = std::numbers::pi / 180;
   ContactDef c;
   c.enabled = f.boolean("enabled", true);  // a contact section means contact unless it says not
@@ -160,9 +177,10 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.penaltyChange = f.number("penalty_change", c.penaltyChange);
   c.friction = f.number("friction", c.friction);
   c.maxReversibleSlip = f.number("max_reversible_slip", c.maxReversibleSlip);
-  c.frictionTangent = f.choice("friction_tangent", {{"consistent", FrictionTangent::Consistent},
-                                                    {"symmetrised", FrictionTangent::Symmetrised}},
-                               c.frictionTangent);
+  c.frictionTangent = f.choice(
+      "friction_tangent",
+      {{"consistent", FrictionTangent::Consistent}, {"symmetrised", FrictionTangent::Symmetrised}},
+      c.frictionTangent);
   c.maxDetectionLoops = f.integer("max_detection_loops", c.maxDetectionLoops);
   c.maxNormalLoops = f.integer("max_normal_loops", c.maxNormalLoops);
   return c;

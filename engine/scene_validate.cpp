@@ -68,13 +68,15 @@ Names uniqueNames(const std::vector<Def>& defs, const std::string& list) {
   for (size_t i = 0; i < defs.size(); ++i) {
     checkName(defs[i].name, at(list, i) + ".name");
     if (auto [it, fresh] = names.emplace(defs[i].name, i); !fresh)
-      fail(at(list, i) + ".name", "duplicate name '" + defs[i].name + "' (also " + at(list, it->second) + ")");
+      fail(at(list, i) + ".name",
+           "duplicate name '" + defs[i].name + "' (also " + at(list, it->second) + ")");
   }
   return names;
 }
 
 // Index of `name` in `names`, else an error suggesting the closest.
-size_t resolve(const Names& names, const std::string& name, const char* what, const std::string& path) {
+size_t resolve(const Names& names, const std::string& name, const char* what,
+               const std::string& path) {
   if (const auto it = names.find(name); it != names.end()) return it->second;
   std::vector<std::string> known;
   for (const auto& [n, i] : names) known.push_back(n);
@@ -144,7 +146,8 @@ Names validateFibres(const SceneDef& s, const Names& materials) {
     resolve(materials, f.material, "material", p + ".material");
     positive(f.radius, p + ".radius");
     atLeast(f.elements, 1, p + ".elements");
-    if (f.order != 1 && f.order != 2) fail(p + ".order", "must be 1 or 2, got " + std::to_string(f.order));
+    if (f.order != 1 && f.order != 2)
+      fail(p + ".order", "must be 1 or 2, got " + std::to_string(f.order));
     validateGeometry(f.geometry, p + ".geometry");
     if (f.integration.section == SectionRule::Quadrature) {
       const int rings = f.integration.rings;
@@ -190,7 +193,8 @@ std::map<std::string, NodeSet> validateGroups(const SceneDef& s, const Names& fi
       const int n = g.nodes[k];
       if (n < 0 || n >= int(seen.size()))
         fail(at(p + ".nodes", k), "node " + std::to_string(n) + " outside 0.." +
-                                      std::to_string(seen.size() - 1) + " (fibre '" + g.fibre + "')");
+                                      std::to_string(seen.size() - 1) + " (fibre '" + g.fibre +
+                                      "')");
       if (seen[n]) fail(at(p + ".nodes", k), "node " + std::to_string(n) + " listed twice");
       seen[n] = true;
     }
@@ -221,7 +225,8 @@ void validateMotion(const Def& d, const std::string& p) {
 
 using Groups = std::map<std::string, NodeSet>;
 
-const NodeSet& resolveGroup(const Groups& groups, const std::string& name, const std::string& path) {
+const NodeSet& resolveGroup(const Groups& groups, const std::string& name,
+                            const std::string& path) {
   if (const auto it = groups.find(name); it != groups.end()) return it->second;
   Names names;
   for (const auto& [n, set] : groups) names.emplace(n, 0);
@@ -231,13 +236,15 @@ const NodeSet& resolveGroup(const Groups& groups, const std::string& name, const
 
 void validateBcs(const SceneDef& s, const Groups& groups) {
   std::vector<int> firstNode(s.fibres.size() + 1, 0);
-  for (size_t f = 0; f < s.fibres.size(); ++f) firstNode[f + 1] = firstNode[f] + nodeCount(s.fibres[f]);
+  for (size_t f = 0; f < s.fibres.size(); ++f)
+    firstNode[f + 1] = firstNode[f] + nodeCount(s.fibres[f]);
   std::vector<int> heldBy(size_t(kNodeDofs) * firstNode.back(), -1);  // DOF -> boundary condition
   for (size_t b = 0; b < s.bcs.size(); ++b) {
     const BcDef& bc = s.bcs[b];
     const std::string p = at("boundary_conditions", b);
     const NodeSet& set = resolveGroup(groups, bc.group, p + ".group");
-    if (bc.kind == BcKind::Fix && std::none_of(bc.dofs.begin(), bc.dofs.end(), [](bool d) { return d; }))
+    if (bc.kind == BcKind::Fix &&
+        std::none_of(bc.dofs.begin(), bc.dofs.end(), [](bool d) { return d; }))
       fail(p + ".dofs", "a fix must hold at least one DOF");
     validateMotion(bc, p);
     for (int n : set.nodes)
@@ -288,10 +295,12 @@ void validateSteps(const SceneDef& s) {
     if (!st.name.empty()) {
       checkName(st.name, p + ".name");
       if (auto [it, fresh] = names.emplace(st.name, i); !fresh)
-        fail(p + ".name", "duplicate name '" + st.name + "' (also " + at("steps", it->second) + ")");
+        fail(p + ".name",
+             "duplicate name '" + st.name + "' (also " + at("steps", it->second) + ")");
     }
     if (!(st.endTime > previous && std::isfinite(st.endTime)))
-      fail(p + ".end_time", "must be after " + std::string(i ? "the previous step's end, " : "the start, ") +
+      fail(p + ".end_time", "must be after " +
+                                std::string(i ? "the previous step's end, " : "the start, ") +
                                 num(previous) + ", got " + num(st.endTime));
     previous = st.endTime;
     atLeast(st.increments, 1, p + ".increments");
@@ -315,8 +324,8 @@ void validateContact(const ContactDef& c) {
   validateAngle(c.thetaCross, "contact.theta_cross_deg");
   validateAngle(c.thetaParallel, "contact.theta_parallel_deg");
   if (c.thetaParallel > c.thetaCross)
-    fail("contact.theta_parallel_deg", "must not exceed theta_cross_deg (" +
-                                           num(c.thetaCross * 180 / std::numbers::pi) + ")");
+    fail("contact.theta_parallel_deg",
+         "must not exceed theta_cross_deg (" + num(c.thetaCross * 180 / std::numbers::pi) + ")");
   positiveOrDefault(c.selfContactSeparation, "contact.self_contact_separation");
   if (!std::isnan(c.skin)) nonNegative(c.skin, "contact.skin");
   positiveOrDefault(c.maxPenetration, "contact.max_penetration");
@@ -367,7 +376,8 @@ void validateOutput(const SceneDef& s, const Names& fibres) {
 
 void validateTable(const TableDef& table, const std::string& path) {
   if (table.t.size() != table.v.size())
-    fail(path, std::to_string(table.t.size()) + " times but " + std::to_string(table.v.size()) + " values");
+    fail(path, std::to_string(table.t.size()) + " times but " + std::to_string(table.v.size()) +
+                   " values");
   if (table.t.empty()) fail(path, "must have at least one point [t, v]");
   for (size_t i = 0; i < table.t.size(); ++i) {
     finite(table.t[i], at(path, i) + "[0]");

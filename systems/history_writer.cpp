@@ -8,7 +8,9 @@
 namespace fibra {
 namespace {
 
-void appendVec(std::vector<double>& row, const Vec3& v) { row.insert(row.end(), v.data(), v.data() + 3); }
+void appendVec(std::vector<double>& row, const Vec3& v) {
+  row.insert(row.end(), v.data(), v.data() + 3);
+}
 
 void addNames(std::vector<std::string>& names, const std::string& prefix,
               std::initializer_list<const char*> suffixes) {
@@ -21,7 +23,8 @@ std::vector<Index> probeNodes(const World& world) {
   std::vector<Index> nodes;
   for (const ProbeDef& p : world.scene().output.probes) {
     const auto f = std::find(fs.name.begin(), fs.name.end(), p.fibre);
-    if (f == fs.name.end()) throw std::invalid_argument("probe '" + p.name + "': unknown fibre '" + p.fibre + "'");
+    if (f == fs.name.end())
+      throw std::invalid_argument("probe '" + p.name + "': unknown fibre '" + p.fibre + "'");
     nodes.push_back(fs.firstNode[f - fs.name.begin()] + p.node);
   }
   return nodes;
@@ -62,7 +65,8 @@ HistoryColumns reactionColumns(const World& world) {
 
 HistoryColumns toolColumns(const World& world) {
   HistoryColumns c;
-  for (const ToolDef& t : world.scene().tools) addNames(c.names, "tool." + t.name, {"fx", "fy", "fz"});
+  for (const ToolDef& t : world.scene().tools)
+    addNames(c.names, "tool." + t.name, {"fx", "fy", "fz"});
   const Index count = Index(world.scene().tools.size());
   c.values = [count](const World& w, const StepReport&, std::vector<double>& row) {
     for (Index t = 0; t < count; ++t) appendVec(row, w.toolReaction(t));
@@ -72,8 +76,10 @@ HistoryColumns toolColumns(const World& world) {
 
 HistoryColumns probeColumns(const World& world) {
   HistoryColumns c;
-  for (const ProbeDef& p : world.scene().output.probes) addNames(c.names, "probe." + p.name, {"x", "y", "z"});
-  c.values = [nodes = probeNodes(world)](const World& w, const StepReport&, std::vector<double>& row) {
+  for (const ProbeDef& p : world.scene().output.probes)
+    addNames(c.names, "probe." + p.name, {"x", "y", "z"});
+  c.values = [nodes = probeNodes(world)](const World& w, const StepReport&,
+                                         std::vector<double>& row) {
     for (Index n : nodes) appendVec(row, x0Of(w.fibres().q, n));
   };
   return c;
@@ -88,7 +94,8 @@ HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns
   std::set<std::string> seen;
   for (const HistoryColumns& family : columns_)
     for (const std::string& name : family.names) {
-      if (!seen.insert(name).second) throw std::invalid_argument("history column '" + name + "' repeated");
+      if (!seen.insert(name).second)
+        throw std::invalid_argument("history column '" + name + "' repeated");
       header_.push_back(name);
     }
   file_ = std::make_unique<OutputFile>(path);

@@ -31,7 +31,8 @@ void OutputFile::commit() {
   if (!out_) throw std::runtime_error("cannot write " + partPath_);
   std::error_code ec;
   std::filesystem::rename(partPath_, path_, ec);
-  if (ec) throw std::runtime_error("cannot rename " + partPath_ + " to " + path_ + ": " + ec.message());
+  if (ec)
+    throw std::runtime_error("cannot rename " + partPath_ + " to " + path_ + ": " + ec.message());
   committed_ = true;
 }
 

@@ -42,8 +42,9 @@ Cells buildCells(const FibreStore& fs, int sides) {
     // (e_r, e_phi, t) is right-handed (g1 x g2 along t), so k -> k+1 -> next section faces out.
     for (Index n = first; n < last; ++n)
       for (int k = 0; k < sides; ++k)
-        c.add(kQuad, f, 1, {rim(fs, sides, n, k), rim(fs, sides, n, k + 1),
-                            rim(fs, sides, n + 1, k + 1), rim(fs, sides, n + 1, k)});
+        c.add(kQuad, f, 1,
+              {rim(fs, sides, n, k), rim(fs, sides, n, k + 1), rim(fs, sides, n + 1, k + 1),
+               rim(fs, sides, n + 1, k)});
     for (int k = sides - 1; k >= 0; --k) c.connectivity.push_back(rim(fs, sides, first, k));
     c.close(kPolygon, f, 1);  // start cap, facing -t
     for (int k = 0; k < sides; ++k) c.connectivity.push_back(rim(fs, sides, last, k));
@@ -61,8 +62,10 @@ void dataArray(std::ostream& out, const char* type, const char* name, int compon
   out << " format=\"ascii\">\n";
   std::string text;
   for (size_t i = 0; i < values.size(); ++i) {
-    if constexpr (std::is_floating_point_v<T>) appendNumber(text, values[i]);
-    else text += std::to_string(values[i]);
+    if constexpr (std::is_floating_point_v<T>)
+      appendNumber(text, values[i]);
+    else
+      text += std::to_string(values[i]);
     text += (i + 1) % (components * 4) == 0 ? '\n' : ' ';
   }
   out << text << "\n</DataArray>\n";
@@ -147,7 +150,8 @@ void VtuSeries::write(const FibreStore& fibres, const Eigen::VectorXd& q, double
   writeVtu((std::filesystem::path(dir_) / framePath(frames())).string(), fibres, q, def_);
   times_.push_back(time);
   OutputFile pvd(pvdPath());
-  std::string text = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  std::string text =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (int i = 0; i < frames(); ++i) {
     text += "<DataSet timestep=\"";
     appendNumber(text, times_[i]);

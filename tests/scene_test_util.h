@@ -28,7 +28,8 @@ inline std::string sourcePath(const std::string& relative) {
 class TempDir {
  public:
   explicit TempDir(const std::string& name)
-      : path_(fs::temp_directory_path() / ("fibra_test_" + name + "_" + std::to_string(::getpid()))) {
+      : path_(fs::temp_directory_path() /
+              ("fibra_test_" + name + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path_);
   }
   ~TempDir() {
@@ -96,7 +97,9 @@ inline pid_t startFibra(const std::vector<std::string>& args, const std::string&
 
 // Exit status of a child; 256 + the signal when a signal ended it (so that an exit status of
 // 130 and death by SIGINT differ).
-inline int statusOf(int status) { return WIFEXITED(status) ? WEXITSTATUS(status) : 256 + WTERMSIG(status); }
+inline int statusOf(int status) {
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 256 + WTERMSIG(status);
+}
 
 inline int waitStatus(pid_t pid) {
   int status = 0;

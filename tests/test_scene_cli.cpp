@@ -21,7 +21,8 @@ Json sampleJson(const std::string& name) {
 }
 
 // Column `name` of a CSV's rows (header first) as numbers, one per data row.
-std::vector<double> column(const std::vector<std::vector<std::string>>& rows, const std::string& name) {
+std::vector<double> column(const std::vector<std::vector<std::string>>& rows,
+                           const std::string& name) {
   const auto& header = rows.at(0);
   const size_t c = std::find(header.begin(), header.end(), name) - header.begin();
   REQUIRE(c < header.size());
@@ -35,7 +36,8 @@ std::vector<std::pair<std::string, std::string>> pvdFrames(const std::string& pa
   const std::string pvd = readFile(path);
   const std::regex dataset("<DataSet timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"/>");
   std::vector<std::pair<std::string, std::string>> frames;
-  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), dataset); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), dataset);
+       it != std::sregex_iterator(); ++it)
     frames.emplace_back((*it)[1], (*it)[2]);
   return frames;
 }
@@ -71,12 +73,17 @@ TEST_CASE("fibra: usage errors exit 2 and create nothing, --help exits 0") {
   const std::pair<std::vector<std::string>, std::string> cases[] = {
       {{"run", scene}, "fibra: missing --out DIR\n"},
       {{"run", "--out", out}, "fibra: missing the scene file\n"},
-      {{"run", scene, "--out", out, "--threads", "0"}, "fibra: --threads: expected a positive integer, got '0'\n"},
-      {{"run", scene, "--out", out, "--threads", "2x"}, "fibra: --threads: expected a positive integer, got '2x'\n"},
+      {{"run", scene, "--out", out, "--threads", "0"},
+       "fibra: --threads: expected a positive integer, got '0'\n"},
+      {{"run", scene, "--out", out, "--threads", "2x"},
+       "fibra: --threads: expected a positive integer, got '2x'\n"},
       {{"run", scene, "--out", out, "--bogus"}, "fibra: unknown option '--bogus'\n"},
-      {{"run", scene, scene, "--out", out}, "fibra: more than one scene file ('" + scene + "', '" + scene + "')\n"},
-      {{"run", scene, "--out", scratch / "file"}, "fibra: --out: '" + scratch / "file" + "' exists and is not a directory\n"},
-      {{"run", scene, "--out", out, "--trace", scratch / "nowhere/t.json"}, "fibra: --trace: no directory '" + scratch / "nowhere" + "'\n"},
+      {{"run", scene, scene, "--out", out},
+       "fibra: more than one scene file ('" + scene + "', '" + scene + "')\n"},
+      {{"run", scene, "--out", scratch / "file"},
+       "fibra: --out: '" + scratch / "file" + "' exists and is not a directory\n"},
+      {{"run", scene, "--out", out, "--trace", scratch / "nowhere/t.json"},
+       "fibra: --trace: no directory '" + scratch / "nowhere" + "'\n"},
       {{"walk"}, "fibra: unknown command 'walk'\n"},
       {{}, "fibra: missing command\n"},
   };
@@ -89,14 +96,17 @@ TEST_CASE("fibra: usage errors exit 2 and create nothing, --help exits 0") {
   }
   const RunResult help = runFibra({"--help"}, scratch);
   CHECK(help.status == 0);
-  CHECK(help.output.starts_with("usage: fibra run SCENE.json --out DIR [--threads N] [--trace FILE]"));
+  CHECK(help.output.starts_with(
+      "usage: fibra run SCENE.json --out DIR [--threads N] [--trace FILE]"));
 }
 
-TEST_CASE("fibra: the cantilever sample writes a consistent series, history, final state and trace") {
+TEST_CASE(
+    "fibra: the cantilever sample writes a consistent series, history, final state and trace") {
   TempDir scratch("cli_cantilever");
   const std::string out = scratch / "out", trace = scratch / "trace.json";
-  const RunResult r = runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out, "--threads", "2",
-                                "--trace", trace}, scratch);
+  const RunResult r = runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out,
+                                "--threads", "2", "--trace", trace},
+                               scratch);
   REQUIRE(r.status == 0);
   CHECK(r.output.find("step 1/1  increment 10/10  t = 1  converged") != std::string::npos);
   CHECK(r.output.find("iteration  1  residual") != std::string::npos);
@@ -107,14 +117,17 @@ TEST_CASE("fibra: the cantilever sample writes a consistent series, history, fin
   CHECK(frames.front() == std::pair<std::string, std::string>{"0", "result_0000.vtu"});
   CHECK(frames.back() == std::pair<std::string, std::string>{"1", "result_0010.vtu"});
   for (const auto& [time, file] : frames)
-    CHECK(readFile(out + "/" + file).find("NumberOfPoints=\"" + std::to_string(21 * 13) + "\"") != std::string::npos);
+    CHECK(readFile(out + "/" + file).find("NumberOfPoints=\"" + std::to_string(21 * 13) + "\"") !=
+          std::string::npos);
 
   const auto history = readCsv(out + "/history.csv");
   REQUIRE(history.size() == 11);
-  CHECK(history[0] == std::vector<std::string>{
-      "time", "step", "increment", "load_factor", "iterations", "total_iterations", "cutbacks", "residual", "wall_s",
-      "reaction.beam.start.fx", "reaction.beam.start.fy", "reaction.beam.start.fz", "reaction.beam.start.mx",
-      "reaction.beam.start.my", "reaction.beam.start.mz", "probe.tip.x", "probe.tip.y", "probe.tip.z"});
+  CHECK(history[0] ==
+        std::vector<std::string>{
+            "time", "step", "increment", "load_factor", "iterations", "total_iterations",
+            "cutbacks", "residual", "wall_s", "reaction.beam.start.fx", "reaction.beam.start.fy",
+            "reaction.beam.start.fz", "reaction.beam.start.mx", "reaction.beam.start.my",
+            "reaction.beam.start.mz", "probe.tip.x", "probe.tip.y", "probe.tip.z"});
   const std::vector<double> increments = column(history, "increment");
   for (size_t i = 0; i < increments.size(); ++i) CHECK(increments[i] == i + 1);
   CHECK(history.back()[0] == "1");
@@ -132,12 +145,13 @@ TEST_CASE("fibra: the cantilever sample writes a consistent series, history, fin
   const auto stages = readCsv(scratch / "trace.stages.csv");
   REQUIRE(stages.size() >= 2);
   CHECK(stages[0].at(0) == "stage");
-  CHECK(std::find_if(stages.begin(), stages.end(), [](const auto& row) { return row.at(0) == "beam assembly"; }) !=
-        stages.end());
+  CHECK(std::find_if(stages.begin(), stages.end(),
+                     [](const auto& row) { return row.at(0) == "beam assembly"; }) != stages.end());
   checkNoPartFiles(out);
 }
 
-TEST_CASE("fibra: the roll-up sample closes the beam into a circle, a frame every second increment") {
+TEST_CASE(
+    "fibra: the roll-up sample closes the beam into a circle, a frame every second increment") {
   TempDir scratch("cli_rollup");
   const std::string out = scratch / "out";
   REQUIRE(runFibra({"run", sourcePath("samples/rollup.json"), "--out", out}, scratch).status == 0);
@@ -170,14 +184,15 @@ TEST_CASE("fibra: a failing increment exits 1 and writes the last converged stat
   fs::create_directories(scratch.path());
   Json scene = sampleJson("cantilever");
   scene["loads"][0]["vector"][1] = -100.0;  // PL^2/EI ~ 3e4 in one increment of two iterations
-  scene["steps"][0] = {{"end_time", 1}, {"increments", 1}, {"max_iterations", 2}, {"max_cutbacks", 0}};
+  scene["steps"][0] = {
+      {"end_time", 1}, {"increments", 1}, {"max_iterations", 2}, {"max_cutbacks", 0}};
   writeFile(scratch / "fail.json", scene.dump());
   const std::string out = scratch / "out";
   const RunResult r = runFibra({"run", scratch / "fail.json", "--out", out}, scratch);
   CHECK(r.status == 1);
   CHECK(r.output.find("fibra: step 1/1, increment 1 failed: ") != std::string::npos);
   CHECK(r.output.find("fibra: wrote the last converged state, t = 0") != std::string::npos);
-  CHECK(readCsv(out + "/history.csv").size() == 1);  // the header: no increment converged
+  CHECK(readCsv(out + "/history.csv").size() == 1);   // the header: no increment converged
   CHECK(pvdFrames(out + "/result.pvd").size() == 1);  // the initial state, once
   const auto tip = stateRow(out + "/final_state.csv", "beam", 20);
   CHECK(tip[2] == "10");  // still at the reference
@@ -198,7 +213,8 @@ TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 
     ~Child() {
       if (!ended) waitStatusWithin(pid, 0);
     }
-  } child{startFibra({"run", scratch / "long.json", "--out", out, "--threads", "1"}, scratch / "log")};
+  } child{
+      startFibra({"run", scratch / "long.json", "--out", out, "--threads", "1"}, scratch / "log")};
   // Interrupt once two increments have converged.
   bool running = false;
   for (int waited = 0; waited < 60000 && !running; waited += 5) {
@@ -210,7 +226,8 @@ TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 
   const int status = waitStatusWithin(child.pid, 60);
   child.ended = true;
   CHECK(status == 130);
-  CHECK(readFile(scratch / "log").find("fibra: interrupted; wrote the last converged state") != std::string::npos);
+  CHECK(readFile(scratch / "log").find("fibra: interrupted; wrote the last converged state") !=
+        std::string::npos);
 
   const auto history = readCsv(out + "/history.csv");
   REQUIRE(history.size() >= 3);

@@ -247,7 +247,8 @@ TEST_CASE("scene loader: absent sections and keys take the Def structs' defaults
       "materials": [{"name": "m", "young_modulus": 1}],
       "fibres": [{"name": "f", "material": "m", "radius": 1, "elements": 1,
                   "geometry": {"type": "line", "points": [[0, 0, 0], [1, 0, 0]]}}],
-      "steps": [{}]})", "minimal.json");
+      "steps": [{}]})",
+                                         "minimal.json");
   CHECK(s.materials[0].poissonRatio == MaterialDef{}.poissonRatio);
   CHECK(s.fibres[0].order == FibreDef{}.order);
   CHECK(s.fibres[0].geometry.director.array().isNaN().all());
@@ -265,7 +266,8 @@ TEST_CASE("scene loader: absent sections and keys take the Def structs' defaults
       "materials": [{"name": "m", "young_modulus": 1}],
       "fibres": [{"name": "f", "material": "m", "radius": 1, "elements": 1,
                   "geometry": {"type": "line", "points": [[0, 0, 0], [1, 0, 0]]}}],
-      "contact": {"enabled": false, "friction": 0.3}, "steps": [{}]})", "off.json");
+      "contact": {"enabled": false, "friction": 0.3}, "steps": [{}]})",
+                                           "off.json");
   CHECK_FALSE(off.contact.enabled);
   CHECK(off.contact.friction == 0.3);
   CHECK(std::isnan(off.contact.thetaCross));  // NaN stays NaN through the degree conversion
@@ -298,7 +300,8 @@ TEST_CASE("validateScene accepts a scene built in code and names fields as the f
   CHECK(errorOf([&] { validateScene(s); }) == "fibres[0].radius: must be > 0, got 0");
   s.fibres[0].radius = 0.1;
   s.contact.thetaCross = kPi;  // radians in code, degrees in the message as in the file
-  CHECK(errorOf([&] { validateScene(s); }) == "contact.theta_cross_deg: must be in [0, 90] degrees, got 180");
+  CHECK(errorOf([&] { validateScene(s); }) ==
+        "contact.theta_cross_deg: must be in [0, 90] degrees, got 180");
   s.contact.thetaCross = kPi / 4;
   s.tools.push_back({});
   s.tools[0].name = "roll";

@@ -60,7 +60,9 @@ WorldDef oneThread() {
   return def;
 }
 
-Vec3 point(const std::vector<double>& xyz, size_t i) { return Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]); }
+Vec3 point(const std::vector<double>& xyz, size_t i) {
+  return Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+}
 
 }  // namespace
 
@@ -75,14 +77,17 @@ TEST_CASE("VTU writer: centrelines at x0 and a closed surface at radius R from t
   writeVtu(dir / "f.vtu", fibres, q, {sides});
   const std::string xml = readFile(dir / "f.vtu");
   const Index nodes = fibres.nodes();  // 7 + 5
-  CHECK(xml.find("NumberOfPoints=\"" + std::to_string(nodes * (1 + sides)) + "\"") != std::string::npos);
+  CHECK(xml.find("NumberOfPoints=\"" + std::to_string(nodes * (1 + sides)) + "\"") !=
+        std::string::npos);
   // Cells: per fibre one poly-line, (nodes - 1) * sides quads, two end caps.
   const int cells = 2 + (6 + 4) * sides + 4;
   CHECK(xml.find("NumberOfCells=\"" + std::to_string(cells) + "\"") != std::string::npos);
 
-  const std::vector<double> pts = dataArray(xml, "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format");
+  const std::vector<double> pts =
+      dataArray(xml, "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format");
   REQUIRE(pts.size() == size_t(3 * nodes * (1 + sides)));
-  for (Index n = 0; n < nodes; ++n) CHECK(point(pts, n) == Vec3(x0Of(q, n)));  // exact: shortest round trip
+  for (Index n = 0; n < nodes; ++n)
+    CHECK(point(pts, n) == Vec3(x0Of(q, n)));  // exact: shortest round trip
   for (Index n = 0; n < nodes; ++n) {
     const double R = fibres.radius[fibres.nodeFibre[n]];
     const Vec3 t = g1Of(fibres.qRef, n).cross(g2Of(fibres.qRef, n));
@@ -97,9 +102,9 @@ TEST_CASE("VTU writer: centrelines at x0 and a closed surface at radius R from t
   CHECK((point(pts, nodes + 2) - x0Of(q, 0)).norm() == doctest::Approx(0.1).epsilon(1e-12));
 
   const std::vector<double> types = dataArray(xml, "Name=\"types\"");
-  CHECK(std::count(types.begin(), types.end(), 4.0) == 2);   // poly-lines
+  CHECK(std::count(types.begin(), types.end(), 4.0) == 2);           // poly-lines
   CHECK(std::count(types.begin(), types.end(), 9.0) == 10 * sides);  // quads
-  CHECK(std::count(types.begin(), types.end(), 7.0) == 4);   // end caps
+  CHECK(std::count(types.begin(), types.end(), 7.0) == 4);           // end caps
   const std::vector<double> offsets = dataArray(xml, "Name=\"offsets\"");
   const std::vector<double> connectivity = dataArray(xml, "Name=\"connectivity\"");
   CHECK(offsets.back() == double(connectivity.size()));
@@ -118,14 +123,16 @@ TEST_CASE("VTU series: the PVD lists exactly the frames written, with their time
   const std::string pvd = readFile(dir / "result.pvd");
   const std::regex dataset("<DataSet timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"/>");
   std::vector<std::pair<std::string, std::string>> listed;
-  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), dataset); it != std::sregex_iterator(); ++it)
+  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), dataset);
+       it != std::sregex_iterator(); ++it)
     listed.emplace_back((*it)[1], (*it)[2]);
   REQUIRE(listed.size() == 3);
   CHECK(listed[0] == std::pair<std::string, std::string>{"0", "result_0000.vtu"});
   CHECK(listed[1] == std::pair<std::string, std::string>{"0.25", "result_0001.vtu"});
   CHECK(listed[2] == std::pair<std::string, std::string>{"1.5", "result_0002.vtu"});
   for (const auto& [time, file] : listed) CHECK(fs::exists(dir / file));
-  for (const auto& entry : fs::directory_iterator(dir.path())) CHECK(entry.path().extension() != ".part");
+  for (const auto& entry : fs::directory_iterator(dir.path()))
+    CHECK(entry.path().extension() != ".part");
 }
 
 TEST_CASE("state writer: every node's nine values read back exactly") {
@@ -137,14 +144,16 @@ TEST_CASE("state writer: every node's nine values read back exactly") {
   writeState(dir / "state.csv", fibres, q);
   const auto rows = readCsv(dir / "state.csv");
   REQUIRE(rows.size() == size_t(fibres.nodes() + 1));
-  CHECK(rows[0] == std::vector<std::string>{"fibre", "node", "x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z"});
+  CHECK(rows[0] == std::vector<std::string>{"fibre", "node", "x", "y", "z", "g1x", "g1y", "g1z",
+                                            "g2x", "g2y", "g2z"});
   for (Index n = 0; n < fibres.nodes(); ++n) {
     const auto& row = rows[n + 1];
     REQUIRE(row.size() == 11);
     const Index f = fibres.nodeFibre[n];
     CHECK(row[0] == fibres.name[f]);
     CHECK(std::stoi(row[1]) == n - fibres.firstNode[f]);
-    for (int k = 0; k < kNodeDofs; ++k) CHECK(std::strtod(row[2 + k].c_str(), nullptr) == q(kNodeDofs * n + k));
+    for (int k = 0; k < kNodeDofs; ++k)
+      CHECK(std::strtod(row[2 + k].c_str(), nullptr) == q(kNodeDofs * n + k));
   }
 }
 
@@ -181,7 +190,8 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
   std::vector<double> extraValues;
   {
     std::vector<HistoryColumns> columns = standardHistoryColumns(world);
-    columns.push_back({{"extra.increment_squared"}, [&](const World&, const StepReport& r, std::vector<double>& row) {
+    columns.push_back({{"extra.increment_squared"},
+                       [&](const World&, const StepReport& r, std::vector<double>& row) {
                          row.push_back(r.increment * r.increment);
                        }});
     HistoryWriter history(path, std::move(columns));
@@ -196,11 +206,25 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
   }
   CHECK_FALSE(fs::exists(path + ".part"));
   const auto rows = readCsv(path);
-  const std::vector<std::string> header = {
-      "time", "step", "increment", "load_factor", "iterations", "total_iterations", "cutbacks", "residual",
-      "wall_s", "reaction.beam.start.fx", "reaction.beam.start.fy", "reaction.beam.start.fz",
-      "reaction.beam.start.mx", "reaction.beam.start.my", "reaction.beam.start.mz", "probe.tip.x",
-      "probe.tip.y", "probe.tip.z", "extra.increment_squared"};
+  const std::vector<std::string> header = {"time",
+                                           "step",
+                                           "increment",
+                                           "load_factor",
+                                           "iterations",
+                                           "total_iterations",
+                                           "cutbacks",
+                                           "residual",
+                                           "wall_s",
+                                           "reaction.beam.start.fx",
+                                           "reaction.beam.start.fy",
+                                           "reaction.beam.start.fz",
+                                           "reaction.beam.start.mx",
+                                           "reaction.beam.start.my",
+                                           "reaction.beam.start.mz",
+                                           "probe.tip.x",
+                                           "probe.tip.y",
+                                           "probe.tip.z",
+                                           "extra.increment_squared"};
   REQUIRE(rows.size() == 4);
   CHECK(rows[0] == header);
   auto value = [&](size_t row, const std::string& column) {
@@ -220,7 +244,8 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
     const double Fy = -P * value(i, "time");
     CHECK(value(i, "reaction.beam.start.fy") == doctest::Approx(-Fy).epsilon(1e-6));
     CHECK(std::abs(value(i, "reaction.beam.start.fx")) < 1e-9 * P);
-    CHECK(value(i, "reaction.beam.start.mz") == doctest::Approx(-value(i, "probe.tip.x") * Fy).epsilon(1e-6));
+    CHECK(value(i, "reaction.beam.start.mz") ==
+          doctest::Approx(-value(i, "probe.tip.x") * Fy).epsilon(1e-6));
     CHECK(value(i, "extra.increment_squared") == i * i);
   }
   // The last row's probe is the world's final tip position, to the last bit.
@@ -234,10 +259,12 @@ TEST_CASE("history writer: repeated column names and miscounted families are ref
   SceneDef scene = loadScene(sourcePath("samples/cantilever.json"));
   World world(scene, oneThread());
   const auto noValues = [](const World&, const StepReport&, std::vector<double>&) {};
-  CHECK_THROWS_AS(HistoryWriter(dir / "h.csv", {incrementColumns(), {{"time"}, noValues}}), std::invalid_argument);
-  HistoryWriter history(dir / "h2.csv", {{{"a", "b"}, [](const World&, const StepReport&, std::vector<double>& row) {
-                                            row.push_back(1);
-                                          }}});
+  CHECK_THROWS_AS(HistoryWriter(dir / "h.csv", {incrementColumns(), {{"time"}, noValues}}),
+                  std::invalid_argument);
+  HistoryWriter history(
+      dir / "h2.csv", {{{"a", "b"}, [](const World&, const StepReport&, std::vector<double>& row) {
+                          row.push_back(1);
+                        }}});
   CHECK_THROWS_AS(history.append(world, StepReport{}), std::logic_error);
   history.close();
   CHECK_THROWS_AS(history.append(world, StepReport{}), std::logic_error);
