@@ -6,9 +6,9 @@
 //       Newton-Raphson: beam strains, contact and sliding status (elements and normals fixed)
 //     adapt the penalty of every zone towards p_max (eq. 13), record the friction history
 //
-// Loop B stops early when no normal turned by more than 1e-3 rad; loop A when the contact set
-// came out unchanged (same elements, particles moved less than 1e-3 R) and no penalty changed
-// by more than 10%. The reference state of loop A's first pass is the last converged state; of
+// Loop B stops early when no normal turned by more than 1e-3 rad; loop A when the fibres moved
+// less than 1e-3 R since its elements were detected (a new detection would find the same set)
+// and no penalty changed by more than 10%. The reference state of loop A's first pass is the last converged state; of
 // the next passes, the state the previous pass converged to — unless that state penetrates the
 // newly detected elements deeper than the Newton step limit allows (stepPenetration p_max),
 // then the pass restarts from the increment's start with the new elements (reported).
@@ -35,6 +35,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
 struct ContactCheckpoint {
   FrictionHistoryStore history;
   std::vector<double> toolPenalty;
+  std::map<std::uint64_t, double> zonePenalty;
 };
 ContactCheckpoint contactCheckpoint(const WorldState& w);
 void restoreContact(WorldState& w, const ContactCheckpoint& c);

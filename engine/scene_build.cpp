@@ -6,6 +6,7 @@
 #include "engine/world_state.h"
 #include "systems/beam_assembler.h"
 #include "systems/beam_section.h"
+#include "systems/contact_assembler.h"
 #include "systems/boundary.h"
 #include "systems/sparse_pattern.h"
 #include "systems/stabilisation.h"
@@ -144,6 +145,13 @@ void buildIterationGraph(WorldState& w) {
   g.add("loads", reads(w.fibres, w.loads, w.groups), writes(w.system), [&w] {
     assembleLoads(w.fibres, w.loads, w.groups, w.fibres.q, w.solveTime, w.withTangent, w.system);
   });
+  if (w.contact.fibres) {
+    const ContactAssemblyParams p{w.contact.pMax, w.contact.pRegRatio, w.scene.contact.friction,
+                                  w.contact.gMax, w.contact.symmetrised};
+    g.add("fibre contact", reads(w.fibres), writes(w.system, w.mechanics), [&w, p] {
+      assembleContacts(w.fibres.q, p, w.withTangent, w.mechanics, w.system);
+    });
+  }
   if (w.contact.tools) {
     const ToolContactParams p{w.contact.toolProximity, w.contact.pRegRatio, w.contact.gMax,
                               w.contact.symmetrised};

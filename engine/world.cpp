@@ -27,6 +27,10 @@ const ConstraintStore& World::constraints() const { return s_->constraints; }
 Eigen::VectorXd World::residual() const { return s_->system.r; }
 
 Vec3 World::toolReaction(Index tool) const { return s_->tools.reaction[tool]; }
+const ZoneStore& World::zones() const { return s_->zones; }
+const ContactElementStore& World::contactElements() const { return s_->elements; }
+const ContactMechanicsStore& World::contactMechanics() const { return s_->mechanics; }
+const ToolContactStore& World::toolContacts() const { return s_->toolContacts; }
 
 Reaction World::reaction(Index bc) const {
   return reactionOf(s_->constraints, s_->fibres.q, s_->system.r, bc, s_->scene.output.momentPoint);

@@ -14,6 +14,9 @@
 
 #include "components/beam_store.h"
 #include "components/boundary.h"
+#include "components/contact.h"
+#include "components/contact_mechanics.h"
+#include "components/tools.h"
 #include "components/fibres.h"
 #include "engine/scene.h"
 #include "engine/trace.h"
@@ -120,6 +123,10 @@ class World {
   const ConstraintStore& constraints() const;
   Reaction reaction(Index bc) const;      // of the current state
   Vec3 toolReaction(Index tool) const;    // force the fibres exert on a tool, N
+  const ZoneStore& zones() const;                        // of the last contact detection
+  const ContactElementStore& contactElements() const;    // their geometry
+  const ContactMechanicsStore& contactMechanics() const; // their forces (last assembly)
+  const ToolContactStore& toolContacts() const;
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
 
  private:

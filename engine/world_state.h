@@ -4,16 +4,21 @@
 
 #include "components/beam_store.h"
 #include "components/boundary.h"
+#include "components/contact.h"
+#include "components/contact_cache.h"
+#include "components/contact_mechanics.h"
 #include "components/fibres.h"
 #include "components/friction_history.h"
 #include "components/linear_system.h"
 #include "components/tools.h"
 #include "engine/task_graph.h"
 #include "engine/world.h"
+#include "systems/contact_params.h"
 #include "systems/linear_solver.h"
 
 #include <tbb/task_arena.h>
 
+#include <map>
 #include <memory>
 
 namespace fibra {
@@ -21,15 +26,18 @@ namespace fibra {
 // Contact parameters resolved from the scene (defaults derived from the radii).
 struct ContactSettings {
   bool tools = false;              // the scene has tools
+  bool fibres = false;             // fibre-fibre contact is on
+  double pMax = 0;                 // p_max of fibre-fibre zones, mm
   int maxDetectionLoops = 3;       // n_A
   int maxNormalLoops = 3;          // n_B
   double pRegRatio = 0.5;          // p_reg / p_max
   double penaltyChange = 10;       // bound on k_new / k_old per update
+  double penaltyTarget = 0.9;      // eq. 13 aims the deepest penetration at this x p_max
   double gMax = 0;                 // reversible slip g_T,max, mm
   double toolProximity = 0;        // tool contacts are made within R + this, mm (NaN: default)
   bool symmetrised = false;        // friction tangent without its non-symmetric part
   double normalTolerance = 1e-3;   // rad: loop B stops when no normal turns more
-  double particleTolerance = 1e-3; // x R: loop A stops when no particle moves more
+  double particleTolerance = 1e-3; // x R: loop A stops when no centreline moved more
   double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
   double stepPenetration = 10;     // x p_max: deepest closing of an element in one Newton step
 };
@@ -49,6 +57,13 @@ struct WorldState {
 
   // Contact.
   ContactSettings contact;
+  ContactParams detection;             // resolved detection parameters
+  ContactCache cache;                  // broadphase candidates, zone identities
+  ZoneStore zones;
+  ContactElementStore elements;
+  ContactMechanicsStore mechanics;
+  std::map<std::uint64_t, double> zonePenalty;  // k by zone id, carried across calls, N/mm
+  std::map<std::pair<Index, Index>, Index> contactClique;  // (element I, element J) -> clique
   ToolStore tools;
   ToolContactStore toolContacts;
   FrictionHistoryStore history;        // at the reference state of the current contact loop
@@ -71,7 +86,7 @@ struct WorldState {
   int increment = 0;         // increments of `step` already converged
 };
 
-inline bool hasContact(const WorldState& w) { return w.contact.tools; }
+inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }
 
 // Builds every store from a scene (throws SceneError on unresolved names or bad geometry).
 void buildWorld(WorldState& w);

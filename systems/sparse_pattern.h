@@ -21,9 +21,12 @@ struct CliqueList {
   std::vector<Index> first;  // per clique: first entry in `nodes`; first.size() = cliques + 1
   std::vector<Index> nodes;  // per entry: global node
   Index size() const { return Index(first.size()) - 1; }
-  void add(Index firstNode, int count) {
+  void add(Index firstNode, int count) { addPair(firstNode, count, 0, 0); }
+  // One clique of two node ranges (the two elements of a contact), in that order.
+  void addPair(Index firstA, int countA, Index firstB, int countB) {
     if (first.empty()) first.push_back(0);
-    for (int i = 0; i < count; ++i) nodes.push_back(firstNode + i);
+    for (int i = 0; i < countA; ++i) nodes.push_back(firstA + i);
+    for (int i = 0; i < countB; ++i) nodes.push_back(firstB + i);
     first.push_back(Index(nodes.size()));
   }
 };

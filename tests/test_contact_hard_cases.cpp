@@ -81,7 +81,7 @@ TEST_CASE("a step that cannot converge fails with a report and the last converge
   CHECK(w.fibres().q.allFinite());
 }
 
-TEST_CASE("penalty adaptation brings the deepest penetration to p_max") {
+TEST_CASE("penalty adaptation brings the deepest penetration just under p_max") {
   SceneDef s = risingRoller(0.3, 6);
   s.tools[0].displacementTable = {{0, 1}, {0, 1}};  // rise and stay
   s.contact.maxPenetration = 1e-3;
@@ -92,5 +92,6 @@ TEST_CASE("penalty adaptation brings the deepest penetration to p_max") {
     REQUIRE(r.status == StepStatus::Converged);
   }
   CHECK(r.contact.active > 0);
-  CHECK(r.contact.maxPenetrationRatio == doctest::Approx(1).epsilon(0.1));
+  CHECK(r.contact.maxPenetrationRatio <= 1);    // aimed at 0.9 p_max,
+  CHECK(r.contact.maxPenetrationRatio >= 0.8);  // and reached
 }

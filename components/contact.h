@@ -1,0 +1,74 @@
+// Contact detection stores (paper section 3): the proximity zones of a detection call and the
+// contact elements generated in them. Flat arrays, no logic; filled by the systems of
+// systems/contact_detection.h, read by the contact mechanics.
+//
+// Canonical order (identical for every thread count): zones sorted by (fibreI, fibreJ, sI1),
+// elements grouped by zone in zone order, then by k (increasing zeta).
+//
+// Zone identity across detection calls (systems/zone_identity.h): a zone of this call matches a
+// zone of the previous call when they have the same fibre pair and their intervals overlap, or
+// nearly overlap (gap at most one test-point spacing), on BOTH fibres. `previous` is the
+// best-overlapping match (-1: none). The previous zone's `id` goes to the one matching zone that
+// overlaps it best; every other zone gets a fresh id. Hence a zone that splits keeps its id on
+// its largest part, the other parts get new ids with `previous` pointing at the parent; zones
+// that merge take the id of the part they overlap best; a zone with no match vanishes.
+#pragma once
+
+#include "components/fibres.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace fibra {
+
+struct ZoneStore {
+  // --- per zone ---
+  std::vector<Index> fibreI;         // fibre carrying the test points (fibreI <= fibreJ)
+  std::vector<Index> fibreJ;         // opposite fibre (== fibreI for self-contact)
+  std::vector<double> sI1, sI2;      // reference arc length interval on I, sI1 <= sI2, mm
+  std::vector<double> sJ1, sJ2;      // closest points on J of the test points sI1, sI2, mm
+                                     // (paired with sI1, sI2: sJ1 > sJ2 when J runs backwards)
+  std::vector<double> minDistance;   // smallest centreline distance over the zone's test points, mm
+  std::vector<Index> testPoints;     // test points of I in the zone (>= 1)
+  std::vector<std::uint64_t> id;     // persistent identity, kept across calls (> 0)
+  std::vector<Index> previous;       // matching zone of the previous call's store, -1 if new
+  std::vector<double> intermediateLength;  // L_int, length of the intermediate geometry, mm
+  std::vector<Index> firstElement;   // first contact element of the zone (ContactElementStore)
+  std::vector<Index> elementCount;   // Nc, contact elements of the zone (>= 1)
+
+  Index size() const { return Index(fibreI.size()); }
+};
+
+// Bits of ContactElementStore::fallback: which documented degenerate-case rule produced it.
+enum ContactFallback : std::uint8_t {
+  kFallbackSectionI = 1,     // eq. 8 ill-posed on I: section of I closest to J's section centre
+  kFallbackSectionJ = 2,     // eq. 8 ill-posed on J: section of J closest to I's section centre
+  kFallbackTangent = 4,      // intermediate tangent undefined: bisector of the fibre tangents
+  kFallbackParticleI = 8,    // other centre on I's axis: particle I from the normal direction
+  kFallbackParticleJ = 16,   // same on J
+  kFallbackNormal = 32,      // centres coincide and fibres parallel: N from the particles
+};
+
+struct ContactElementStore {
+  // --- per contact element ---
+  std::vector<Index> zone;        // owning zone (ZoneStore index)
+  std::vector<double> zeta;       // relative abscissa on the intermediate geometry, in [0, 1]
+  // side I: the material particle (fibre, s, xi1, xi2); x = x0(s) + xi1 g1(s) + xi2 g2(s)
+  std::vector<Index> fibreI;      // fibre of particle I
+  std::vector<double> sI;         // reference arc length of the section of I, mm
+  std::vector<double> xiI1, xiI2; // section coordinates of particle I, mm (|xi| = R_I)
+  // side J
+  std::vector<Index> fibreJ;
+  std::vector<double> sJ;         // mm
+  std::vector<double> xiJ1, xiJ2; // mm (|xi| = R_J)
+  // eqs. 10-11 at the state of the last normal update
+  std::vector<Vec3> normal;        // N, unit, from J to I: N . (x0I - x0J) >= 0
+  std::vector<double> gap;         // gN = (xI - xJ) . N, mm (negative: penetration)
+  std::vector<double> theta;       // angle between the centreline tangents, rad, in [0, pi/2]
+  std::vector<double> crossWeight; // weight of the crossing normal in the blend, in [0, 1]
+  std::vector<std::uint8_t> fallback;  // ContactFallback bits
+
+  Index size() const { return Index(zone.size()); }
+};
+
+}  // namespace fibra

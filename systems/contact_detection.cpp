@@ -1,0 +1,27 @@
+#include "systems/contact_detection.h"
+
+#include "systems/broadphase.h"
+#include "systems/contact_elements.h"
+#include "systems/zone_builder.h"
+#include "systems/zone_identity.h"
+
+namespace fibra {
+
+ContactDetectionReport detectContacts(const FibreStore& fs, const Eigen::VectorXd& q,
+                                      const ContactParams& params, ContactCache& cache,
+                                      ZoneStore& zones, ContactElementStore& elements,
+                                      Trace* trace) {
+  Span span(trace, "contact-detection");
+  ContactDetectionReport r;
+  r.broadphaseRebuilt = updateBroadphase(fs, q, params, cache.centrelines, cache.broadphase, trace);
+  buildZones(fs, params, cache.centrelines, cache.broadphase, cache.zones, zones, trace);
+  matchZones(fs, params, cache.zones, zones, trace);
+  generateContactElements(fs, q, params, cache.centrelines, zones, elements, trace);
+  r.candidatePairs = Index(cache.broadphase.candidate.size());
+  r.zones = zones.size();
+  r.elements = elements.size();
+  span.items(r.elements);
+  return r;
+}
+
+}  // namespace fibra

@@ -1,0 +1,205 @@
+#include "systems/contact_elements.h"
+
+#include "systems/contact_geometry.h"
+#include "systems/contact_normals.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+namespace fibra {
+namespace {
+
+// The intermediate geometry of one zone (eq. 5): zeta -> sI(zeta), sJ(zeta).
+struct Intermediate {
+  const FibreStore& fs;
+  const CentrelineStore& cl;
+  Index I, J;
+  double sI1, dI, sJ1, dJ;  // start and signed length of each interval, mm
+
+  double sI(double zeta) const { return sI1 + zeta * dI; }
+  double sJ(double zeta) const { return sJ1 + zeta * dJ; }
+  // dx_int / dzeta, mm
+  Vec3 tangent(double zeta) const {
+    return 0.5 * (centrelineAt(fs, cl, I, sI(zeta)).dxds * dI +
+                  centrelineAt(fs, cl, J, sJ(zeta)).dxds * dJ);
+  }
+};
+
+// Successive zeta in (0, 1) where s1 + zeta d crosses an element end n h.
+struct Breakpoints {
+  double s1, d, h;
+  std::int64_t n;  // next element end index
+  Breakpoints(double s1_, double d_, double h_) : s1(s1_), d(d_), h(h_) {
+    n = d > 0 ? std::int64_t(std::floor(s1 / h)) + 1 : std::int64_t(std::ceil(s1 / h)) - 1;
+  }
+  double peek() const {
+    if (d == 0) return 1;
+    const double z = (double(n) * h - s1) / d;
+    return z > 0 && z < 1 ? z : 1;
+  }
+  void advance() { n += d > 0 ? 1 : -1; }
+};
+
+// L_int = int_0^1 |t_int| dzeta, two-point Gauss per piece between element ends.
+double intermediateLength(const Intermediate& g) {
+  if (g.dI == 0 && g.dJ == 0) return 0;
+  Breakpoints bI(g.sI1, g.dI, elementLength(g.fs, g.I)), bJ(g.sJ1, g.dJ, elementLength(g.fs, g.J));
+  const double r = 0.5 / std::sqrt(3.0);
+  double a = 0, total = 0;
+  while (a < 1) {
+    const double zI = bI.peek(), zJ = bJ.peek(), b = std::min(zI, zJ);
+    if (b > a) {
+      const double mid = 0.5 * (a + b), w = b - a;
+      total += 0.5 * w * (g.tangent(mid - r * w).norm() + g.tangent(mid + r * w).norm());
+    }
+    if (zI == b && zI < 1) bI.advance();
+    if (zJ == b && zJ < 1) bJ.advance();
+    a = b;
+  }
+  return total;
+}
+
+// The interval of a zone on one fibre widened by Delta_prox and clamped to the fibre, mm.
+std::pair<double, double> widened(const FibreStore& fs, Index f, double s1, double s2, double delta) {
+  return {std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
+}
+
+Vec3 unitTangent(const Section& s) { return s.dx0ds.normalized(); }
+
+// Particle direction when the other centre gives none: n = t_I x t_J, else I's director g1.
+Vec3 fallbackDirection(const Section& I, const Section& J) {
+  const Vec3 n = unitTangent(I).cross(unitTangent(J));
+  return n.norm() > 1e-12 ? Vec3(n.normalized()) : Vec3(I.g1.normalized());
+}
+
+void particles(const Section& I, const Section& J, double RI, double RJ, double xiI[2],
+               double xiJ[2], std::uint8_t& flags) {
+  const Vec3 d = J.x0 - I.x0;
+  const bool okI = outlinePoint(I.g1, I.g2, RI, d, xiI);
+  const bool okJ = outlinePoint(J.g1, J.g2, RJ, -d, xiJ);
+  if (okI && okJ) return;
+  const Vec3 n = fallbackDirection(I, J);
+  if (!okI) {
+    flags |= kFallbackParticleI;
+    if (!outlinePoint(I.g1, I.g2, RI, -n, xiI)) xiI[0] = -RI, xiI[1] = 0;
+  }
+  if (!okJ) {
+    flags |= kFallbackParticleJ;
+    if (!outlinePoint(J.g1, J.g2, RJ, n, xiJ)) xiJ[0] = RJ, xiJ[1] = 0;
+  }
+}
+
+struct ElementSides {
+  double sI, sJ;
+  std::uint8_t flags;
+};
+
+// The sections of I and J at zeta (eq. 8 and its degenerate cases).
+ElementSides sectionsAt(const Intermediate& g, double zeta, double delta) {
+  const FibreStore& fs = g.fs;
+  const double sIz = g.sI(zeta), sJz = g.sJ(zeta);
+  const CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sIz), cJ = centrelineAt(fs, g.cl, g.J, sJz);
+  const Vec3 xInt = 0.5 * (cI.x + cJ.x);
+  const Vec3 tInt = 0.5 * (cI.dxds * g.dI + cJ.dxds * g.dJ);
+  ElementSides out{sIz, sJz, 0};
+  Vec3 t;
+  if (tInt.norm() > 1e-9 * 0.5 * (std::abs(g.dI) + std::abs(g.dJ))) {
+    t = tInt.normalized();
+  } else {
+    const Vec3 tI = cI.dxds.normalized(), tJ = cJ.dxds.normalized();
+    t = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
+    out.flags |= kFallbackTangent;
+  }
+  const auto [aI, bI] = widened(fs, g.I, g.sI1, g.sI1 + g.dI, delta);
+  const auto [aJ, bJ] = widened(fs, g.J, g.sJ1, g.sJ1 + g.dJ, delta);
+  const bool okI = planeCut(fs, g.cl, g.I, xInt, t, sIz, cI, aI, bI, out.sI);
+  const bool okJ = planeCut(fs, g.cl, g.J, xInt, t, sJz, cJ, aJ, bJ, out.sJ);
+  if (!okI && okJ) {
+    out.sI = closestOnFibre(fs, g.cl, g.I, centrelineAt(fs, g.cl, g.J, out.sJ).x, aI, bI).s;
+    out.flags |= kFallbackSectionI;
+  } else if (!okJ) {
+    if (!okI) out.flags |= kFallbackSectionI;
+    out.sJ = closestOnFibre(fs, g.cl, g.J, centrelineAt(fs, g.cl, g.I, out.sI).x, aJ, bJ).s;
+    out.flags |= kFallbackSectionJ;
+  }
+  return out;
+}
+
+void resizeElements(ContactElementStore& el, Index n) {
+  for (auto* v : {&el.zone, &el.fibreI, &el.fibreJ}) v->resize(n);
+  for (auto* v : {&el.zeta, &el.sI, &el.xiI1, &el.xiI2, &el.sJ, &el.xiJ1, &el.xiJ2, &el.gap,
+                  &el.theta, &el.crossWeight})
+    v->resize(n);
+  el.normal.resize(n);
+  el.fallback.resize(n);
+}
+
+void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
+                  const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
+  const Index nc = zones.elementCount[z], first = zones.firstElement[z];
+  const double delta = proximityDistance(p, g.I, g.J);
+  for (Index k = 0; k < nc; ++k) {
+    const Index e = first + k;
+    const double zeta = nc == 1 ? 0.5 : double(k) / (nc - 1);
+    const ElementSides sides = sectionsAt(g, zeta, delta);
+    const Section I = sectionOf(fs, q, locate(fs, g.I, sides.sI));
+    const Section J = sectionOf(fs, q, locate(fs, g.J, sides.sJ));
+    double xiI[2], xiJ[2];
+    std::uint8_t flags = sides.flags;
+    particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
+    el.zone[e] = z;
+    el.zeta[e] = zeta;
+    el.fibreI[e] = g.I;
+    el.sI[e] = sides.sI;
+    el.xiI1[e] = xiI[0];
+    el.xiI2[e] = xiI[1];
+    el.fibreJ[e] = g.J;
+    el.sJ[e] = sides.sJ;
+    el.xiJ1[e] = xiJ[0];
+    el.xiJ2[e] = xiJ[1];
+    const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J],
+                                      p.thetaParallel, p.thetaCross);
+    el.normal[e] = ng.normal;
+    el.gap[e] = ng.gap;
+    el.theta[e] = ng.theta;
+    el.crossWeight[e] = ng.crossWeight;
+    el.fallback[e] = flags | (ng.fallback ? kFallbackNormal : 0);
+  }
+}
+
+}  // namespace
+
+void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
+                             const ContactParams& params, const CentrelineStore& centrelines,
+                             ZoneStore& zones, ContactElementStore& elements, Trace* trace) {
+  Span span(trace, "contact-elements");
+  const Index nz = zones.size();
+  auto geometry = [&](Index z) {
+    return Intermediate{fs, centrelines, zones.fibreI[z], zones.fibreJ[z], zones.sI1[z],
+                        zones.sI2[z] - zones.sI1[z], zones.sJ1[z], zones.sJ2[z] - zones.sJ1[z]};
+  };
+  tbb::parallel_for(tbb::blocked_range<Index>(0, nz, 16), [&](const tbb::blocked_range<Index>& r) {
+    for (Index z = r.begin(); z != r.end(); ++z) {
+      const Intermediate g = geometry(z);
+      const double L = intermediateLength(g);
+      const double hMin = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
+      zones.intermediateLength[z] = L;
+      zones.elementCount[z] = std::max<Index>(1, Index(std::floor(2 * L / hMin)));
+    }
+  });
+  Index total = 0;
+  for (Index z = 0; z < nz; ++z) {
+    zones.firstElement[z] = total;
+    total += zones.elementCount[z];
+  }
+  resizeElements(elements, total);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, nz, 4), [&](const tbb::blocked_range<Index>& r) {
+    for (Index z = r.begin(); z != r.end(); ++z)
+      zoneElements(fs, q, params, geometry(z), zones, z, elements);
+  });
+  span.items(total);
+}
+
+}  // namespace fibra

@@ -1,0 +1,46 @@
+// Contact element generator: intermediate geometries (eq. 5) and contact elements (eqs. 6-9).
+//
+// Reads  FibreStore, the state q (x0, g1, g2), ContactParams, CentrelineStore, ZoneStore
+//        (fibres, intervals).
+// Writes ZoneStore::intermediateLength, firstElement, elementCount; ContactElementStore (zone,
+//        zeta, particles, fallback bits; normal, gap, theta, crossWeight are sized and left to
+//        systems/contact_normals.h).
+// Threading: parallel over zones, twice: lengths, then (after a prefix sum of the counts) the
+//        elements, each zone writing its own range. Independent of the thread count.
+//
+// Per zone Z = ([sI1, sI2], [sJ1, sJ2]), with sI(zeta) = sI1 + zeta (sI2 - sI1) (same on J):
+//   x_int(zeta) = (x_I(sI(zeta)) + x_J(sJ(zeta))) / 2,  t_int = dx_int / dzeta          (eq. 5)
+//   L_int = int_0^1 |t_int| dzeta: two-point Gauss on each piece between the element ends of I
+//   and J (t_int is linear in zeta on a piece), 0 for a zero-length zone;
+//   Nc = max(1, floor(2 L_int / h_min)), h_min = min(h_I, h_J)                           (eq. 6)
+//   zeta_k = (k - 1) / (Nc - 1), k = 1..Nc; zeta = 1/2 when Nc = 1                        (eq. 7)
+//   sections: (x(s) - x_int(zeta_k)) . t_int(zeta_k) = 0 on I and on J                   (eq. 8)
+//     by Newton from sI(zeta_k) (resp. sJ) within the zone interval widened by Delta_prox
+//     (clamped to the fibre), bisection as safeguard;
+//   particles: on each section, the outline point x0 + xi1 g1 + xi2 g2, |xi| = R, in the
+//     direction of the other section's centre projected onto span(g1, g2)        (eq. 9, Fig. 4).
+//
+// Degenerate cases (documented in docs/CONTACT.md, flagged in ContactElementStore::fallback):
+//   t_int = 0 (zero-length zone, or cancelling pieces): t_int := bisector of the tangents
+//     t_I + t_J (t_J flipped to t_I's side).
+//   Eq. 8 ill-posed on one fibre (its tangent makes more than 80 deg with t_int, so the plane
+//     nearly contains it - e.g. J in a perpendicular crossing where J's interval shrinks to a
+//     point - or no root in its widened interval - e.g. the fibre ends inside the zone): that
+//     section is the closest point, within the widened interval, to the other section's centre.
+//     Both ill-posed: I at sI(zeta_k), J closest to it.
+//   The other centre has no component in the section plane (coincident or end-to-end centres):
+//     the particle is taken in the direction -n on I and +n on J, n = t_I x t_J, or the
+//     direction of I's director g1 when the fibres are parallel.
+#pragma once
+
+#include "components/contact_cache.h"
+#include "engine/trace.h"
+#include "systems/contact_params.h"
+
+namespace fibra {
+
+void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
+                             const ContactParams& params, const CentrelineStore& centrelines,
+                             ZoneStore& zones, ContactElementStore& elements, Trace* trace);
+
+}  // namespace fibra

@@ -1,0 +1,152 @@
+#include "systems/contact_geometry.h"
+
+#include <tuple>
+
+namespace fibra {
+namespace {
+
+// g(z) = (x(z) - p).x'(z) = g0 + g1 z + g2 z^2 + g3 z^3 and D(z) = |x(z) - p|^2.
+struct Quartic {
+  double d0, g0, g1, g2, g3, cc;
+  double D(double z) const { return d0 + z * (2 * g0 + z * (g1 + z * (2 * g2 / 3 + z * cc))); }
+  double g(double z) const { return g0 + z * (g1 + z * (g2 + z * g3)); }
+  double dg(double z) const { return g1 + z * (2 * g2 + z * 3 * g3); }
+};
+
+// The root of g in [u, v] where g(u) < 0 < g(v) and g rises: Newton, bisection when a step
+// leaves the bracket.
+double risingRoot(const Quartic& Q, double u, double v, double gu, double gv) {
+  double z = u - gu * (v - u) / (gv - gu);
+  for (int it = 0; it < 60; ++it) {
+    const double gz = Q.g(z);
+    if (gz == 0) return z;
+    (gz < 0 ? u : v) = z;
+    double next = z - gz / Q.dg(z);
+    if (!(next > u && next < v)) next = 0.5 * (u + v);
+    // quadratic convergence: after a step of 1e-8 the error is of order 1e-16
+    if (std::abs(next - z) <= 1e-8 || v - u <= 1e-15) return next;
+    z = next;
+  }
+  return z;
+}
+
+}  // namespace
+
+ClosestPoint closestOnPolynomial(const CentrelinePolynomial& P, const Vec3& p, double z0,
+                                 double z1) {
+  const Vec3 d = P.a - p;
+  const double db = d.dot(P.b), dc = d.dot(P.c), bb = P.b.dot(P.b), bc = P.b.dot(P.c);
+  const double cc = P.c.dot(P.c);
+  const Quartic Q{d.dot(d), db, bb + 2 * dc, 3 * bc, 2 * cc, cc};
+  if (cc == 0) {  // straight element: g is linear
+    const double z = bb > 0 ? std::clamp(-db / bb, z0, z1) : z0;
+    return {z, Q.D(z)};
+  }
+  // g'(z) = A z^2 + B z + C, A > 0; no real root: g rises everywhere, one minimum.
+  const double A = 3 * Q.g3, B = 2 * Q.g2, C = Q.g1, disc = B * B - 4 * A * C;
+  if (disc <= 0) {
+    const double g0 = Q.g(z0);
+    if (g0 >= 0) return {z0, Q.D(z0)};
+    const double g1 = Q.g(z1);
+    if (g1 <= 0) return {z1, Q.D(z1)};
+    const double z = risingRoot(Q, z0, z1, g0, g1);
+    return {z, Q.D(z)};
+  }
+  // Split points: the roots of g' inside (z0, z1); candidates: the ends and every piece where
+  // g rises through 0.
+  ClosestPoint best{z0, Q.D(z0)};
+  auto consider = [&](double z) {
+    const double D = Q.D(z);
+    if (D < best.dist2 || (D == best.dist2 && z < best.z)) best = {z, D};
+  };
+  consider(z1);
+  double cut[4] = {z0, 0, 0, 0};
+  int n = 1;
+  const double r = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+  double r1 = r / A, r2 = r != 0 ? C / r : r1;
+  if (r1 > r2) std::swap(r1, r2);
+  if (r1 > z0 && r1 < z1) cut[n++] = r1;
+  if (r2 > z0 && r2 < z1) cut[n++] = r2;
+  cut[n++] = z1;
+  double gu = Q.g(cut[0]);
+  for (int i = 0; i + 1 < n; ++i) {
+    const double gv = Q.g(cut[i + 1]);
+    if (gu < 0 && gv > 0) consider(risingRoot(Q, cut[i], cut[i + 1], gu, gv));
+    gu = gv;
+  }
+  return best;
+}
+
+ClosestOnFibre closestOnFibre(const FibreStore& fs, const CentrelineStore& cl, Index f,
+                              const Vec3& p, double sa, double sb) {
+  const double h = elementLength(fs, f);
+  const FibrePoint a = locate(fs, f, sa), b = locate(fs, f, sb);
+  const Index first = fs.firstElement[f];
+  ClosestOnFibre best{sa, std::numeric_limits<double>::infinity()};
+  for (Index e = a.element; e <= b.element; ++e) {
+    const double z0 = e == a.element ? a.z : -1, z1 = e == b.element ? b.z : 1;
+    const ClosestPoint c = closestOnPolynomial(cl.poly[e], p, z0, z1);
+    const double s = (e - first + 0.5 * (c.z + 1)) * h;
+    if (c.dist2 < best.dist2 || (c.dist2 == best.dist2 && s < best.s)) best = {s, c.dist2};
+  }
+  return best;
+}
+
+bool planeCut(const FibreStore& fs, const CentrelineStore& cl, Index f, const Vec3& xInt,
+              const Vec3& t, double s0, const CentrelinePoint& c0, double sa, double sb,
+              double& s) {
+  auto F = [&](double u) {
+    const CentrelinePoint c = centrelineAt(fs, cl, f, u);
+    return std::pair{(c.x - xInt).dot(t), c.dxds.dot(t)};
+  };
+  const double h = elementLength(fs, f);
+  double v = (c0.x - xInt).dot(t), dv = c0.dxds.dot(t);
+  if (std::abs(dv) < kPlaneCutMinCosine * c0.dxds.norm()) return false;
+  // Newton from s0 while it stays in the interval; a step below 1e-7 h leaves an error of
+  // order (1e-7 h)^2 / h after it (quadratic convergence).
+  double u = s0;
+  for (int it = 0; it < 12 && dv != 0; ++it) {
+    const double next = u - v / dv;
+    if (!(next >= sa && next <= sb)) break;
+    if (std::abs(next - u) <= 1e-7 * h) {
+      s = next;
+      return true;
+    }
+    u = next;
+    std::tie(v, dv) = F(u);
+  }
+  // Bisection with Newton steps on a sign-changing bracket.
+  const double tol = 1e-13 * h;
+  double lo = sa, hi = sb, flo = F(lo).first, fhi = F(hi).first;
+  if (flo == 0 || fhi == 0) {
+    s = flo == 0 ? lo : hi;
+    return true;
+  }
+  if ((flo < 0) == (fhi < 0)) return false;
+  u = 0.5 * (lo + hi);
+  for (int it = 0; it < 200 && hi - lo > tol; ++it) {
+    std::tie(v, dv) = F(u);
+    if (v == 0) break;
+    ((v < 0) == (flo < 0) ? lo : hi) = u;
+    double next = dv != 0 ? u - v / dv : u;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    u = next;
+  }
+  s = u;
+  return true;
+}
+
+bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, double xi[2]) {
+  const double m11 = g1.dot(g1), m12 = g1.dot(g2), m22 = g2.dot(g2);
+  const double det = m11 * m22 - m12 * m12;
+  if (!(det > 1e-12 * m11 * m22)) return false;
+  const double r1 = g1.dot(dir), r2 = g2.dot(dir);
+  const double a = (m22 * r1 - m12 * r2) / det, b = (m11 * r2 - m12 * r1) / det;
+  if (!((a * g1 + b * g2).norm() > 1e-9 * dir.norm())) return false;
+  const double n = std::sqrt(a * a + b * b);
+  xi[0] = R * a / n;
+  xi[1] = R * b / n;
+  return true;
+}
+
+}  // namespace fibra

@@ -1,0 +1,108 @@
+// Geometric kernels of the contact detection, shared by its stages: centreline evaluation from
+// the per-element polynomials, closest point of a centreline to a point, the plane cut of
+// eq. 8, and the particle on a deformed section outline (paper Fig. 4). Header-only, pure
+// functions of their arguments.
+#pragma once
+
+#include "components/contact_cache.h"
+#include "systems/interpolation.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fibra {
+
+// Polynomial of a node-interpolated centreline, from the element's nodal x0:
+//   quadratic: x(z) = x1 + (x2 - x0)/2 z + ((x0 + x2)/2 - x1) z^2;  linear: (x0+x1)/2 + (x1-x0)/2 z.
+inline CentrelinePolynomial centrelinePolynomial(const FibreStore& fs, const Eigen::VectorXd& q,
+                                                 Index e) {
+  const Index n = fs.elementFirstNode[e];
+  if (fs.order[fs.elementFibre[e]] == 1) {
+    const Vec3 x0 = x0Of(q, n), x1 = x0Of(q, n + 1);
+    return {0.5 * (x0 + x1), 0.5 * (x1 - x0), Vec3::Zero()};
+  }
+  const Vec3 x0 = x0Of(q, n), x1 = x0Of(q, n + 1), x2 = x0Of(q, n + 2);
+  return {x1, 0.5 * (x2 - x0), 0.5 * (x0 + x2) - x1};
+}
+
+// The Bernstein control points of x(z) on [-1, 1]: a - b + c, a - c, a + b + c. Their convex
+// hull, hence their box, contains the element's centreline.
+inline BoxD controlPointBox(const CentrelinePolynomial& P) {
+  const Vec3 p0 = P.a - P.b + P.c, p1 = P.a - P.c, p2 = P.a + P.b + P.c;
+  return {p0.cwiseMin(p1).cwiseMin(p2), p0.cwiseMax(p1).cwiseMax(p2)};
+}
+
+struct CentrelinePoint {
+  Vec3 x;     // x0(s), mm
+  Vec3 dxds;  // dx0/ds, -
+};
+
+inline CentrelinePoint centrelineAt(const FibreStore& fs, const CentrelineStore& cl, Index f,
+                                    double s) {
+  const FibrePoint fp = locate(fs, f, s);
+  const CentrelinePolynomial& P = cl.poly[fp.element];
+  const double z = fp.z;
+  return {P.a + z * (P.b + z * P.c), (P.b + 2 * z * P.c) * (2 / elementLength(fs, f))};
+}
+
+// The section at a fibre point (as sectionAt of systems/interpolation.h, with flat loops over
+// the nodal values): x0 (mm), dx0/ds, g1, g2.
+inline Section sectionOf(const FibreStore& fs, const Eigen::VectorXd& q, FibrePoint p) {
+  const Index f = fs.elementFibre[p.element];
+  const int order = fs.order[f];
+  double N[3], dN[3];
+  lagrangeShape(order, p.z, N, dN);
+  const double dzds = 2 * fs.elementCount[f] / fs.length[f];
+  const double* x = q.data() + kNodeDofs * std::size_t(fs.elementFirstNode[p.element]);
+  double v[12] = {};  // x0, dx0/ds, g1, g2
+  for (int a = 0; a <= order; ++a, x += kNodeDofs)
+    for (int k = 0; k < 3; ++k) {
+      v[k] += N[a] * x[k];
+      v[3 + k] += dN[a] * dzds * x[k];
+      v[6 + k] += N[a] * x[3 + k];
+      v[9 + k] += N[a] * x[6 + k];
+    }
+  return {Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), Vec3(v[6], v[7], v[8]),
+          Vec3(v[9], v[10], v[11])};
+}
+
+struct ClosestPoint {
+  double z;      // element parameter of the closest point
+  double dist2;  // squared distance, mm^2
+};
+
+// Closest point of x(z) = a + b z + c z^2, z in [z0, z1], to p: the global minimum of
+// D(z) = |x(z) - p|^2, a quartic. Its half-derivative g = (x - p).x' is a cubic whose
+// derivative g' = |x'|^2 + (x - p).x'' is quadratic: the roots of g' split [z0, z1] into pieces
+// where g is monotone; a piece where g rises through 0 holds one local minimum, found by Newton
+// safeguarded by bisection. The minimum over those and the end points wins (ties: smaller z).
+ClosestPoint closestOnPolynomial(const CentrelinePolynomial& P, const Vec3& p, double z0,
+                                 double z1);
+
+// Closest point of fibre f's centreline, restricted to s in [sa, sb], to p. Returns s (mm) and
+// the squared distance (ties: smaller s).
+struct ClosestOnFibre {
+  double s, dist2;
+};
+ClosestOnFibre closestOnFibre(const FibreStore& fs, const CentrelineStore& cl, Index f,
+                              const Vec3& p, double sa, double sb);
+
+// Eq. 8 on fibre f: s in [sa, sb] with (x0(s) - xInt) . t = 0, t unit. Newton from s0 (c0 its
+// centreline point), safeguarded by bisection when [sa, sb] brackets a sign change. Returns
+// false (s untouched) when the plane cut is ill-posed: the fibre makes more than 80 deg with t
+// at s0 (the plane nearly contains it), or no root is found in [sa, sb].
+constexpr double kPlaneCutMinCosine = 0.17364817766693033;  // cos 80 deg
+bool planeCut(const FibreStore& fs, const CentrelineStore& cl, Index f, const Vec3& xInt,
+              const Vec3& t, double s0, const CentrelinePoint& c0, double sa, double sb,
+              double& s);
+
+// Section coordinates of the particle of the deformed outline x0 + xi1 g1 + xi2 g2, |xi| = R,
+// in the direction of `dir` projected onto the section plane span(g1, g2) (paper Fig. 4):
+// with G = [g1 g2], the projection is G m, m = (G^T G)^-1 G^T dir, and the ray x0 + t G m meets
+// the outline at xi = R m / |m|. Returns false (xi untouched) when dir has no component in the
+// plane (|G m| <= 1e-9 |dir|) or the section is crushed (g1, g2 parallel).
+bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, double xi[2]);
+
+}  // namespace fibra

@@ -1,0 +1,70 @@
+#include "systems/contact_normals.h"
+
+#include "systems/contact_geometry.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fibra {
+
+NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
+                       const double xiJ[2], double RI, double RJ, double thetaParallel,
+                       double thetaCross) {
+  const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
+  const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
+  const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
+  const Vec3 d = I.x0 - J.x0;
+  Vec3 cross = tI.cross(tJ);
+  const double theta = std::atan2(cross.norm(), std::abs(tI.dot(tJ)));
+  double w = theta > thetaCross ? 1 : 0;
+  if (thetaCross > thetaParallel)
+    w = std::clamp((theta - thetaParallel) / (thetaCross - thetaParallel), 0.0, 1.0);
+  if (w > 0) {
+    cross.normalize();
+    if (cross.dot(d) < 0) cross = -cross;
+  }
+  NormalGap out{Vec3::Zero(), 0, theta, w, false};
+  const bool centresApart = d.norm() > 1e-9 * (RI + RJ);
+  if (w == 1 || (w > 0 && !centresApart)) {
+    out.normal = cross;
+    out.crossWeight = 1;
+  } else if (centresApart) {
+    out.normal = (w * cross + (1 - w) * d.normalized()).normalized();
+  } else {
+    const Vec3 p = xJ - xI;
+    out.normal = p.norm() > 0 ? Vec3(p.normalized()) : Vec3(I.g1.normalized());
+    out.fallback = true;
+  }
+  out.gap = (xI - xJ).dot(out.normal);
+  return out;
+}
+
+void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
+                          const ContactParams& params, ContactElementStore& el, Trace* trace) {
+  Span span(trace, "contact-normals");
+  const Index n = el.size();
+  tbb::parallel_for(tbb::blocked_range<Index>(0, n, 256), [&](const tbb::blocked_range<Index>& r) {
+    for (Index e = r.begin(); e != r.end(); ++e) {
+      const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
+      const Section I = sectionOf(fs, q, locate(fs, fI, el.sI[e]));
+      const Section J = sectionOf(fs, q, locate(fs, fJ, el.sJ[e]));
+      const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
+      const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
+                                        params.thetaParallel, params.thetaCross);
+      el.normal[e] = ng.normal;
+      el.gap[e] = ng.gap;
+      el.theta[e] = ng.theta;
+      el.crossWeight[e] = ng.crossWeight;
+      el.fallback[e] = ng.fallback ? el.fallback[e] | kFallbackNormal
+                                   : el.fallback[e] & ~std::uint8_t(kFallbackNormal);
+    }
+  });
+  span.items(n);
+}
+
+}  // namespace fibra

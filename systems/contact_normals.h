@@ -1,0 +1,44 @@
+// Normals and gaps of the contact elements (eqs. 10, 11), for fixed particles. Run by the
+// detection after the element generator, and again on its own whenever the normals are updated
+// at a new state with the same contact elements (the paper's loop B).
+//
+// Reads  FibreStore, the state q, ContactParams (theta_cross, theta_parallel), the particles of
+//        ContactElementStore.
+// Writes ContactElementStore::normal, gap, theta, crossWeight, and the kFallbackNormal bit.
+// Threading: parallel over contact elements, each writing its own entries.
+//
+// With the sections of the two particles (centres x0, unit tangents t) and
+//   theta = atan2(|t_I x t_J|, |t_I . t_J|) in [0, pi/2],
+//   n_cross = t_I x t_J / |t_I x t_J|,  n_par = (x0I - x0J) / |x0I - x0J|,
+//   w = clamp((theta - theta_par) / (theta_cross - theta_par), 0, 1)  (a step when they are equal),
+//   N = normalised(w n_cross + (1 - w) n_par),  n_cross first turned so that n_cross.(x0I - x0J) >= 0,
+// so that N points from J to I (N.(x0I - x0J) >= 0); the gap is gN = (xI(xi_I) - xJ(xi_J)).N.
+// Swapping I and J flips N and keeps gN (n_cross and n_par are both odd in the swap).
+// Degenerate: n_par undefined (|x0I - x0J| <= 1e-9 (R_I + R_J)) with w < 1: N = n_cross when
+// w > 0; else (coincident centres of parallel fibres) N = (xJ - xI) / |xJ - xI| from the
+// particles, which then face each other: a full penetration gN = -|xI - xJ|. kFallbackNormal.
+#pragma once
+
+#include "components/contact.h"
+#include "engine/trace.h"
+#include "systems/contact_params.h"
+#include "systems/interpolation.h"
+
+namespace fibra {
+
+struct NormalGap {
+  Vec3 normal;
+  double gap, theta, crossWeight;
+  bool fallback;
+};
+
+// Eqs. 10-11 for one pair of sections and particles (radii RI, RJ, mm).
+NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
+                       const double xiJ[2], double RI, double RJ, double thetaParallel,
+                       double thetaCross);
+
+void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
+                          const ContactParams& params, ContactElementStore& elements,
+                          Trace* trace);
+
+}  // namespace fibra

@@ -1,0 +1,59 @@
+#include "systems/contact_params.h"
+
+#include <numbers>
+#include <string>
+
+namespace fibra {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180;
+constexpr double kReachPerRadius = 1.5;
+constexpr double kDefaultThetaParallel = 5 * kDegree;
+constexpr double kDefaultThetaCross = 20 * kDegree;
+
+// The given value, or `fallback` when NaN; throws for a negative one.
+double orDefault(double given, double fallback, const char* field) {
+  if (std::isnan(given)) return fallback;
+  if (!(given >= 0) || !std::isfinite(given))
+    throw SceneError(std::string("contact.") + field + ": must be a finite value >= 0");
+  return given;
+}
+
+}  // namespace
+
+ContactParams resolveContactParams(const FibreStore& fs, const ContactDef& def) {
+  ContactParams p;
+  const Index n = fs.fibres();
+  double rMin = n > 0 ? fs.radius[0] : 0;
+  for (Index f = 0; f < n; ++f) rMin = std::min(rMin, fs.radius[f]);
+
+  const double delta = orDefault(def.proximityDistance, std::nan(""), "proximityDistance");
+  p.reach.resize(n);
+  for (Index f = 0; f < n; ++f)
+    p.reach[f] = std::isnan(delta) ? kReachPerRadius * fs.radius[f] : delta / 2;
+
+  p.testPointSpacing = std::nan("");
+  if (!std::isnan(def.testPointSpacing)) {
+    p.testPointSpacing = orDefault(def.testPointSpacing, 0, "testPointSpacing");
+    if (!(p.testPointSpacing > 0)) throw SceneError("contact.testPointSpacing: must be > 0");
+  }
+  p.thetaParallel = orDefault(def.thetaParallel, kDefaultThetaParallel, "thetaParallel");
+  p.thetaCross = orDefault(def.thetaCross, kDefaultThetaCross, "thetaCross");
+  if (p.thetaParallel > p.thetaCross)
+    throw SceneError("contact.thetaParallel: must not exceed contact.thetaCross");
+  if (p.thetaCross > std::numbers::pi / 2)
+    throw SceneError("contact.thetaCross: must not exceed pi / 2");
+
+  p.selfContact = def.selfContact;
+  const double sep = orDefault(def.selfContactSeparation, std::nan(""), "selfContactSeparation");
+  p.selfSeparation.resize(n);
+  for (Index f = 0; f < n; ++f) {
+    const double h = fs.length[f] / fs.elementCount[f];
+    const double s = std::isnan(sep) ? 2 * (p.reach[f] + p.reach[f]) : sep;
+    p.selfSeparation[f] = std::max(s, h);
+  }
+  p.skin = orDefault(def.skin, rMin / 2, "skin");
+  return p;
+}
+
+}  // namespace fibra

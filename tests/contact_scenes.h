@@ -1,0 +1,87 @@
+// Scenes with fibre-fibre contact for the tests and benches, built in code.
+#pragma once
+
+#include "engine/world.h"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace fibra::test {
+
+inline FibreDef straightFibre(const std::string& name, const Vec3& a, const Vec3& b, double R,
+                              int elements, const Vec3& director) {
+  FibreDef f;
+  f.name = name;
+  f.material = "m";
+  f.radius = R;
+  f.elements = elements;
+  f.geometry.points = {a, b};
+  f.geometry.director = director;
+  return f;
+}
+
+inline void hold(SceneDef& s, const std::string& group, std::initializer_list<Dof> dofs,
+                 const Vec3& displacement = Vec3::Zero(), const TableDef& table = {{0, 1}, {0, 1}}) {
+  BcDef b;
+  b.kind = BcKind::Fix;
+  b.group = group;
+  for (Dof d : dofs) b.dofs[d] = true;
+  b.displacement = displacement;
+  b.displacementTable = table;
+  s.bcs.push_back(b);
+}
+
+// Two identical simply supported beams (length L, radius R, E = 4000 MPa) crossing at their
+// midspans, B on top of A, touching; a force P pushes B's midspan down. A's supports and B's
+// supports carry P between them: by symmetry the contact carries P/2 when contact is rigid.
+inline SceneDef crossingBeams(double P, double pMax, int elements = 10) {
+  const double L = 4, R = 0.1;
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  s.fibres.push_back(straightFibre("A", Vec3(-L / 2, 0, 0), Vec3(L / 2, 0, 0), R, elements, Vec3::UnitZ()));
+  s.fibres.push_back(straightFibre("B", Vec3(0, -L / 2, 2 * R), Vec3(0, L / 2, 2 * R), R, elements, Vec3::UnitZ()));
+  GroupDef mid{"B.mid", "B", {elements}};  // the midspan node of a quadratic mesh
+  s.groups.push_back(mid);
+  for (const char* f : {"A", "B"}) {
+    hold(s, std::string(f) + ".start", {X, Y, Z});
+    hold(s, std::string(f) + ".end", {X, Y, Z});
+  }
+  hold(s, "A.start", {G1Y});  // no spin of A about x
+  hold(s, "B.start", {G1X});  // no spin of B about y
+  s.loads.push_back({LoadKind::Force, "B.mid", Vec3(0, 0, -P), {{0, 1}, {0, 1}}});
+  s.contact.enabled = true;
+  s.contact.maxPenetration = pMax;
+  StepDef st;
+  st.increments = 4;
+  s.steps.push_back(st);
+  return s;
+}
+
+// Two parallel beams along x, B on top of A; A rests on a frictionless plane; a uniform line
+// load w presses B onto A. Away from the ends the contact line force is w. A tiny stabilisation
+// spring holds the beams in the first iterations, before the contacts have stiffness.
+inline SceneDef parallelBeams(double w, double pMax, int elements = 16) {
+  const double L = 4, R = 0.1;
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  s.fibres.push_back(straightFibre("A", Vec3(0, 0, R), Vec3(L, 0, R), R, elements, Vec3::UnitZ()));
+  s.fibres.push_back(straightFibre("B", Vec3(0, 0, 3 * R), Vec3(L, 0, 3 * R), R, elements, Vec3::UnitZ()));
+  for (const char* f : {"A", "B"}) {
+    hold(s, std::string(f) + ".start", {X, Y, G1Y});
+    hold(s, std::string(f) + ".end", {Y});
+  }
+  ToolDef floor;
+  floor.name = "floor";
+  s.tools.push_back(floor);
+  s.loads.push_back({LoadKind::LineForce, "B.all", Vec3(0, 0, -w), {{0, 1}, {0, 1}}});
+  s.stabilisation.stiffness = 1e-3;  // both beams rest on contacts that start without stiffness
+  s.contact.enabled = true;
+  s.contact.maxPenetration = pMax;
+  StepDef st;
+  st.increments = 4;
+  s.steps.push_back(st);
+  return s;
+}
+
+}  // namespace fibra::test
