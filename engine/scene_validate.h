@@ -5,8 +5,14 @@
 
 #include "engine/scene.h"
 
+#include <string>
+
 namespace fibra {
 
 void validateScene(const SceneDef& scene);
+
+// One table: at least one point, finite values, times strictly increasing. `path` names it
+// (e.g. "loads[0].table"); a point is named "path[i]".
+void validateTable(const TableDef& table, const std::string& path);
 
 }  // namespace fibra

@@ -1,0 +1,213 @@
+// Scene loader: the top level, materials, fibres, groups, steps and output. Boundary
+// conditions, loads, tables, tools and contact are in scene_loader_motion.cpp.
+#include "engine/scene_loader.h"
+
+#include "engine/json_reader.h"
+#include "engine/scene_sections.h"
+#include "engine/scene_validate.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fibra {
+namespace scene_sections {
+
+using namespace json_reader;
+
+MaterialDef readMaterial(const Json& j, const std::string& path) {
+  const Fields f(j, path,
+                 {"name", "young_modulus", "poisson_ratio", "bending_factor", "torsion_factor"});
+  MaterialDef m;
+  m.name = f.string("name");
+  m.youngModulus = f.number("young_modulus");
+  m.poissonRatio = f.number("poisson_ratio", m.poissonRatio);
+  m.bendingFactor = f.number("bending_factor", m.bendingFactor);
+  m.torsionFactor = f.number("torsion_factor", m.torsionFactor);
+  return m;
+}
+
+namespace {
+
+std::vector<Vec3> readPoints(const Fields& f) {
+  std::vector<Vec3> points;
+  forEachItem(f.at("points"), f.path("points"),
+              [&](const Json& p, const std::string& at) { points.push_back(asVec3(p, at)); });
+  return points;
+}
+
+GeometryDef readGeometry(const Json& j, const std::string& path) {
+  GeometryDef g;
+  g.kind =
+      Fields(j, path,
+             {"type", "points", "director", "origin", "axis", "radius", "pitch", "turns", "phase"})
+          .choice<GeometryKind>("type", {{"line", GeometryKind::Line},
+                                         {"polyline", GeometryKind::Polyline},
+                                         {"helix", GeometryKind::Helix}});
+  if (g.kind == GeometryKind::Helix) {
+    const Fields f(j, path, {"type", "origin", "axis", "radius", "pitch", "turns", "phase"},
+                   "a helix geometry");
+    g.origin = f.vec3("origin", g.origin);
+    g.axis = f.vec3("axis", g.axis);
+    g.helixRadius = f.number("radius");
+    g.pitch = f.number("pitch");
+    g.turns = f.number("turns");
+    g.phase = f.number("phase", g.phase);
+    return g;
+  }
+  const Fields f(j, path, {"type", "points", "director"},
+                 g.kind == GeometryKind::Line ? "a line geometry" : "a polyline geometry");
+  g.points = readPoints(f);
+  g.director = f.vec3("director", g.director);
+  return g;
+}
+
+BeamIntegration readIntegration(const Json& j, const std::string& path) {
+  BeamIntegration r;
+  r.section =
+      Fields(j, path, {"axial", "section", "rings", "sectors"})
+          .choice("section",
+                  {{"moments", SectionRule::Moments}, {"quadrature", SectionRule::Quadrature}},
+                  r.section);
+  const Fields f = r.section == SectionRule::Quadrature
+                       ? Fields(j, path, {"axial", "section", "rings", "sectors"})
+                       : Fields(j, path, {"axial", "section"}, "section \"moments\"");
+  r.axial =
+      f.choice("axial", {{"reduced", AxialRule::Reduced}, {"full", AxialRule::Full}}, r.axial);
+  r.rings = f.integer("rings", r.rings);
+  r.sectors = f.integer("sectors", r.sectors);
+  return r;
+}
+
+}  // namespace
+
+FibreDef readFibre(const Json& j, const std::string& path) {
+  const Fields f(j, path,
+                 {"name", "material", "radius", "elements", "order", "geometry", "integration"});
+  FibreDef d;
+  d.name = f.string("name");
+  d.material = f.string("material");
+  d.radius = f.number("radius");
+  d.elements = f.integer("elements");
+  d.order = f.integer("order", d.order);
+  d.geometry = readGeometry(f.at("geometry"), f.path("geometry"));
+  if (f.has("integration"))
+    d.integration = readIntegration(f.at("integration"), f.path("integration"));
+  return d;
+}
+
+GroupDef readGroup(const Json& j, const std::string& path) {
+  const Fields f(j, path, {"name", "fibre", "nodes"});
+  GroupDef g;
+  g.name = f.string("name");
+  g.fibre = f.string("fibre");
+  forEachItem(f.at("nodes"), f.path("nodes"),
+              [&](const Json& n, const std::string& at) { g.nodes.push_back(asInteger(n, at)); });
+  return g;
+}
+
+StepDef readStep(const Json& j, const std::string& path) {
+  const Fields f(j, path,
+                 {"name", "end_time", "increments", "max_iterations", "force_tolerance",
+                  "increment_tolerance", "max_cutbacks", "line_search", "output_every"});
+  StepDef s;
+  s.name = f.string("name", s.name);
+  s.endTime = f.number("end_time", s.endTime);
+  s.increments = f.integer("increments", s.increments);
+  s.maxIterations = f.integer("max_iterations", s.maxIterations);
+  s.forceTolerance = f.number("force_tolerance", s.forceTolerance);
+  s.incrementTolerance = f.number("increment_tolerance", s.incrementTolerance);
+  s.maxCutbacks = f.integer("max_cutbacks", s.maxCutbacks);
+  s.lineSearch = f.boolean("line_search", s.lineSearch);
+  s.outputEvery = f.integer("output_every", s.outputEvery);
+  return s;
+}
+
+OutputDef readOutput(const Json& j, const std::string& path) {
+  const Fields f(j, path, {"vtu", "history", "final_state", "moment_point", "probes"});
+  OutputDef o;
+  o.vtu = f.boolean("vtu", o.vtu);
+  o.history = f.boolean("history", o.history);
+  o.finalState = f.boolean("final_state", o.finalState);
+  o.momentPoint = f.vec3("moment_point", o.momentPoint);
+  if (f.has("probes"))
+    forEachItem(f.at("probes"), f.path("probes"), [&](const Json& p, const std::string& at) {
+      const Fields pf(p, at, {"name", "fibre", "node"});
+      o.probes.push_back({pf.string("name"), pf.string("fibre"), pf.integer("node")});
+    });
+  return o;
+}
+
+}  // namespace scene_sections
+
+namespace {
+
+using namespace json_reader;
+using namespace scene_sections;
+
+template <class Def, class Read>
+std::vector<Def> readList(const Fields& f, const char* key, Read read) {
+  std::vector<Def> defs;
+  if (f.has(key))
+    forEachItem(f.at(key), f.path(key),
+                [&](const Json& j, const std::string& at) { defs.push_back(read(j, at)); });
+  return defs;
+}
+
+// Lists that a scene cannot do without.
+void requireItems(const Fields& f, const char* key) {
+  if (f.at(key).is_array() && f.at(key).empty()) fail(f.path(key), "must list at least one entry");
+}
+
+SceneDef readScene(const Json& root) {
+  const Fields f(
+      root, "",
+      {"description", "units", "materials", "fibres", "groups", "tables", "boundary_conditions",
+       "loads", "steps", "contact", "tools", "stabilisation", "output"});
+  f.string("description", "");
+  SceneDef s;
+  s.units = f.string("units");
+  for (const char* key : {"materials", "fibres", "steps"}) requireItems(f, key);
+  const Tables tables = f.has("tables") ? readTables(f.at("tables"), "tables") : Tables{};
+  s.materials = readList<MaterialDef>(f, "materials", readMaterial);
+  s.fibres = readList<FibreDef>(f, "fibres", readFibre);
+  s.groups = readList<GroupDef>(f, "groups", readGroup);
+  s.bcs = readList<BcDef>(f, "boundary_conditions", [&](const Json& j, const std::string& at) {
+    return readBc(j, at, tables);
+  });
+  s.loads = readList<LoadDef>(
+      f, "loads", [&](const Json& j, const std::string& at) { return readLoad(j, at, tables); });
+  s.steps = readList<StepDef>(f, "steps", readStep);
+  if (f.has("contact")) s.contact = readContact(f.at("contact"), "contact");
+  s.tools = readList<ToolDef>(
+      f, "tools", [&](const Json& j, const std::string& at) { return readTool(j, at, tables); });
+  if (f.has("stabilisation"))
+    s.stabilisation = readStabilisation(f.at("stabilisation"), "stabilisation");
+  if (f.has("output")) s.output = readOutput(f.at("output"), "output");
+  return s;
+}
+
+}  // namespace
+
+SceneDef loadSceneFromString(const std::string& text, const std::string& displayName) {
+  try {
+    const SceneDef scene = readScene(json_reader::parse(text));
+    validateScene(scene);
+    return scene;
+  } catch (const SceneError& e) {
+    throw SceneError(displayName + ": " + e.what());
+  }
+}
+
+SceneDef loadScene(const std::string& path) {
+  if (std::filesystem::is_directory(path))
+    throw SceneError(path + ": is a directory, not a scene file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path + ": cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path + ": cannot read the scene file");
+  return loadSceneFromString(text.str(), path);
+}
+
+}  // namespace fibra

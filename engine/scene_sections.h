@@ -1,0 +1,32 @@
+// The scene file's sections, each read into its Defs (internal to the loader). Readers check
+// the form of the text: types, unknown and missing fields, value names (enums), table syntax
+// and order; validateScene then checks ranges and cross-references on the whole SceneDef.
+#pragma once
+
+#include "engine/json_reader.h"
+#include "engine/scene.h"
+
+#include <map>
+#include <string>
+
+namespace fibra::scene_sections {
+
+using json_reader::Json;
+using Tables = std::map<std::string, TableDef>;
+
+// scene_loader.cpp
+MaterialDef readMaterial(const Json& j, const std::string& path);
+FibreDef readFibre(const Json& j, const std::string& path);
+GroupDef readGroup(const Json& j, const std::string& path);
+StepDef readStep(const Json& j, const std::string& path);
+OutputDef readOutput(const Json& j, const std::string& path);
+
+// scene_loader_motion.cpp
+Tables readTables(const Json& j, const std::string& path);
+BcDef readBc(const Json& j, const std::string& path, const Tables& tables);
+LoadDef readLoad(const Json& j, const std::string& path, const Tables& tables);
+ToolDef readTool(const Json& j, const std::string& path, const Tables& tables);
+ContactDef readContact(const Json& j, const std::string& path);
+StabilisationDef readStabilisation(const Json& j, const std::string& path);
+
+}  // namespace fibra::scene_sections

@@ -1,0 +1,405 @@
+// Scene validation: ranges, names and cross-references of a whole SceneDef. Field paths use the
+// scene file's names (docs/SCENE.md), so a message reads the same for a file and for a SceneDef
+// built in code. Code-only representations are reported in file terms: contact angles in
+// degrees, a tool's direction as its "normal" or "axis".
+#include "engine/scene_validate.h"
+
+#include "engine/json_reader.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+namespace fibra {
+namespace {
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+std::string at(const std::string& list, size_t i) { return list + "[" + std::to_string(i) + "]"; }
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw SceneError(path + ": " + what);
+}
+
+void positive(double v, const std::string& path) {
+  if (!(v > 0 && std::isfinite(v))) fail(path, "must be > 0, got " + num(v));
+}
+void nonNegative(double v, const std::string& path) {
+  if (!(v >= 0 && std::isfinite(v))) fail(path, "must be >= 0, got " + num(v));
+}
+void finite(double v, const std::string& path) {
+  if (!std::isfinite(v)) fail(path, "must be a finite number, got " + num(v));
+}
+void finite(const Vec3& v, const std::string& path) {
+  if (!v.allFinite()) fail(path, "must be a finite vector");
+}
+void nonZero(const Vec3& v, const std::string& path) {
+  if (!(v.allFinite() && v.norm() > 0)) fail(path, "must be a finite, non-zero vector");
+}
+// NaN means "the default"; any other value must be positive.
+void positiveOrDefault(double v, const std::string& path) {
+  if (!std::isnan(v)) positive(v, path);
+}
+void atLeast(int v, int min, const std::string& path) {
+  if (v < min) fail(path, "must be >= " + std::to_string(min) + ", got " + std::to_string(v));
+}
+
+void checkName(const std::string& name, const std::string& path) {
+  if (name.empty()) fail(path, "must not be empty");
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+      fail(path, "'" + name + "' contains '" + std::string(1, c) +
+                     "'; names use letters, digits, '_', '-' and '.'");
+}
+
+using Names = std::map<std::string, size_t>;
+
+// Valid, unique names of one list -> index.
+template <class Def>
+Names uniqueNames(const std::vector<Def>& defs, const std::string& list) {
+  Names names;
+  for (size_t i = 0; i < defs.size(); ++i) {
+    checkName(defs[i].name, at(list, i) + ".name");
+    if (auto [it, fresh] = names.emplace(defs[i].name, i); !fresh)
+      fail(at(list, i) + ".name",
+           "duplicate name '" + defs[i].name + "' (also " + at(list, it->second) + ")");
+  }
+  return names;
+}
+
+// Index of `name` in `names`, else an error suggesting the closest.
+size_t resolve(const Names& names, const std::string& name, const char* what,
+               const std::string& path) {
+  if (const auto it = names.find(name); it != names.end()) return it->second;
+  std::vector<std::string> known;
+  for (const auto& [n, i] : names) known.push_back(n);
+  const std::string close = json_reader::closestKey(name, known);
+  std::string hint;
+  if (!close.empty()) {
+    hint = " (did you mean '" + close + "'?)";
+  } else if (!known.empty() && known.size() <= 8) {
+    for (const std::string& k : known) hint += (hint.empty() ? " (known: " : ", ") + k;
+    hint += ")";
+  }
+  fail(path, std::string("unknown ") + what + " '" + name + "'" + hint);
+}
+
+int nodeCount(const FibreDef& f) { return f.order * f.elements + 1; }
+
+// --- materials, fibres, geometry ---
+
+Names validateMaterials(const SceneDef& s) {
+  const Names names = uniqueNames(s.materials, "materials");
+  for (size_t i = 0; i < s.materials.size(); ++i) {
+    const MaterialDef& m = s.materials[i];
+    const std::string p = at("materials", i);
+    positive(m.youngModulus, p + ".young_modulus");
+    if (!(m.poissonRatio > -1 && m.poissonRatio < 0.5))
+      fail(p + ".poisson_ratio", "must be in (-1, 0.5), got " + num(m.poissonRatio));
+    nonNegative(m.bendingFactor, p + ".bending_factor");
+    nonNegative(m.torsionFactor, p + ".torsion_factor");
+  }
+  return names;
+}
+
+void validatePoints(const GeometryDef& g, const std::string& p) {
+  const size_t n = g.points.size();
+  if (g.kind == GeometryKind::Line && n != 2)
+    fail(p + ".points", "a line has 2 points (start and end), got " + std::to_string(n));
+  if (g.kind == GeometryKind::Polyline && n < 2)
+    fail(p + ".points", "a polyline has at least 2 points, got " + std::to_string(n));
+  for (size_t k = 0; k < n; ++k) {
+    finite(g.points[k], at(p + ".points", k));
+    if (k > 0 && !((g.points[k] - g.points[k - 1]).norm() > 0))
+      fail(at(p + ".points", k), "repeats the previous point");
+  }
+  if (g.director.array().isNaN().all()) return;  // absent: chosen by the fibre builder
+  nonZero(g.director, p + ".director");
+  const Vec3 t = (g.points[1] - g.points[0]).normalized();
+  if (g.director.normalized().cross(t).norm() < 1e-8)
+    fail(p + ".director", "is parallel to the fibre's first segment");
+}
+
+void validateGeometry(const GeometryDef& g, const std::string& p) {
+  if (g.kind != GeometryKind::Helix) return validatePoints(g, p);
+  finite(g.origin, p + ".origin");
+  nonZero(g.axis, p + ".axis");
+  positive(g.helixRadius, p + ".radius");
+  finite(g.pitch, p + ".pitch");
+  finite(g.turns, p + ".turns");
+  if (g.turns == 0) fail(p + ".turns", "must not be 0");
+  finite(g.phase, p + ".phase");
+}
+
+Names validateFibres(const SceneDef& s, const Names& materials) {
+  const Names names = uniqueNames(s.fibres, "fibres");
+  for (size_t i = 0; i < s.fibres.size(); ++i) {
+    const FibreDef& f = s.fibres[i];
+    const std::string p = at("fibres", i);
+    resolve(materials, f.material, "material", p + ".material");
+    positive(f.radius, p + ".radius");
+    atLeast(f.elements, 1, p + ".elements");
+    if (f.order != 1 && f.order != 2)
+      fail(p + ".order", "must be 1 or 2, got " + std::to_string(f.order));
+    validateGeometry(f.geometry, p + ".geometry");
+    if (f.integration.section == SectionRule::Quadrature) {
+      const int rings = f.integration.rings;
+      if (rings < 1 || rings > 4)
+        fail(p + ".integration.rings", "must be 1 to 4, got " + std::to_string(rings));
+      atLeast(f.integration.sectors, 3, p + ".integration.sectors");
+    }
+  }
+  return names;
+}
+
+// --- groups ---
+
+struct NodeSet {
+  size_t fibre;
+  std::vector<int> nodes;
+};
+
+// Every group by name: the fibres' automatic ones, then the scene's.
+std::map<std::string, NodeSet> validateGroups(const SceneDef& s, const Names& fibres) {
+  std::map<std::string, NodeSet> groups;
+  for (size_t i = 0; i < s.fibres.size(); ++i) {
+    std::vector<int> all(nodeCount(s.fibres[i]));
+    for (int n = 0; n < int(all.size()); ++n) all[n] = n;
+    groups[s.fibres[i].name + ".start"] = {i, {0}};
+    groups[s.fibres[i].name + ".end"] = {i, {int(all.size()) - 1}};
+    groups[s.fibres[i].name + ".all"] = {i, all};
+  }
+  Names scene;
+  for (size_t i = 0; i < s.groups.size(); ++i) {
+    const GroupDef& g = s.groups[i];
+    const std::string p = at("groups", i);
+    checkName(g.name, p + ".name");
+    if (auto [it, fresh] = scene.emplace(g.name, i); !fresh)
+      fail(p + ".name", "duplicate name '" + g.name + "' (also " + at("groups", it->second) + ")");
+    if (groups.count(g.name))
+      fail(p + ".name", "'" + g.name + "' is an automatic group of fibre '" +
+                            s.fibres[groups[g.name].fibre].name + "'");
+    const size_t f = resolve(fibres, g.fibre, "fibre", p + ".fibre");
+    if (g.nodes.empty()) fail(p + ".nodes", "must list at least one node");
+    std::vector<bool> seen(nodeCount(s.fibres[f]), false);
+    for (size_t k = 0; k < g.nodes.size(); ++k) {
+      const int n = g.nodes[k];
+      if (n < 0 || n >= int(seen.size()))
+        fail(at(p + ".nodes", k), "node " + std::to_string(n) + " outside 0.." +
+                                      std::to_string(seen.size() - 1) + " (fibre '" + g.fibre +
+                                      "')");
+      if (seen[n]) fail(at(p + ".nodes", k), "node " + std::to_string(n) + " listed twice");
+      seen[n] = true;
+    }
+    groups[g.name] = {f, g.nodes};
+  }
+  return groups;
+}
+
+// --- boundary conditions and loads ---
+
+const char* const kDofNames[kNodeDofs] = {"x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z"};
+
+bool holds(const BcDef& b, int dof) {
+  return b.kind == BcKind::Clamp || (b.kind == BcKind::Pin && dof < 3) ||
+         (b.kind == BcKind::Fix && b.dofs[dof]);
+}
+
+// Displacement * table and rotation of a boundary condition or a tool.
+template <class Def>
+void validateMotion(const Def& d, const std::string& p) {
+  finite(d.displacement, p + ".displacement");
+  validateTable(d.displacementTable, p + ".table");
+  if (!d.rotates) return;
+  nonZero(d.axis, p + ".rotation.axis");
+  if (!d.centre.array().isNaN().all()) finite(d.centre, p + ".rotation.centre");
+  validateTable(d.angle, p + ".rotation.angle");
+}
+
+using Groups = std::map<std::string, NodeSet>;
+
+const NodeSet& resolveGroup(const Groups& groups, const std::string& name,
+                            const std::string& path) {
+  if (const auto it = groups.find(name); it != groups.end()) return it->second;
+  Names names;
+  for (const auto& [n, set] : groups) names.emplace(n, 0);
+  resolve(names, name, "group", path);  // fails
+  return groups.at(name);
+}
+
+void validateBcs(const SceneDef& s, const Groups& groups) {
+  std::vector<int> firstNode(s.fibres.size() + 1, 0);
+  for (size_t f = 0; f < s.fibres.size(); ++f)
+    firstNode[f + 1] = firstNode[f] + nodeCount(s.fibres[f]);
+  std::vector<int> heldBy(size_t(kNodeDofs) * firstNode.back(), -1);  // DOF -> boundary condition
+  for (size_t b = 0; b < s.bcs.size(); ++b) {
+    const BcDef& bc = s.bcs[b];
+    const std::string p = at("boundary_conditions", b);
+    const NodeSet& set = resolveGroup(groups, bc.group, p + ".group");
+    if (bc.kind == BcKind::Fix &&
+        std::none_of(bc.dofs.begin(), bc.dofs.end(), [](bool d) { return d; }))
+      fail(p + ".dofs", "a fix must hold at least one DOF");
+    validateMotion(bc, p);
+    for (int n : set.nodes)
+      for (int c = 0; c < kNodeDofs; ++c) {
+        if (!holds(bc, c)) continue;
+        int& owner = heldBy[size_t(kNodeDofs) * (firstNode[set.fibre] + n) + c];
+        if (owner >= 0)
+          fail(p, std::string("holds DOF ") + kDofNames[c] + " of node " + std::to_string(n) +
+                      " of fibre '" + s.fibres[set.fibre].name + "', already held by " +
+                      at("boundary_conditions", owner) + " (group '" + s.bcs[owner].group + "')");
+        owner = int(b);
+      }
+  }
+}
+
+// Whether a group holds every node of at least one element of its fibre.
+bool coversAnElement(const FibreDef& f, const std::vector<int>& nodes) {
+  std::vector<bool> in(nodeCount(f), false);
+  for (int n : nodes) in[n] = true;
+  for (int e = 0; e < f.elements; ++e) {
+    bool all = true;
+    for (int a = 0; a <= f.order; ++a) all = all && in[f.order * e + a];
+    if (all) return true;
+  }
+  return false;
+}
+
+void validateLoads(const SceneDef& s, const Groups& groups) {
+  for (size_t l = 0; l < s.loads.size(); ++l) {
+    const LoadDef& load = s.loads[l];
+    const std::string p = at("loads", l);
+    const NodeSet& set = resolveGroup(groups, load.group, p + ".group");
+    finite(load.vector, p + ".vector");
+    validateTable(load.table, p + ".table");
+    if (load.kind == LoadKind::LineForce && !coversAnElement(s.fibres[set.fibre], set.nodes))
+      fail(p + ".group", "group '" + load.group + "' holds no whole element for a line force");
+  }
+}
+
+// --- steps, contact, tools, stabilisation, output ---
+
+void validateSteps(const SceneDef& s) {
+  double previous = 0;
+  Names names;
+  for (size_t i = 0; i < s.steps.size(); ++i) {
+    const StepDef& st = s.steps[i];
+    const std::string p = at("steps", i);
+    if (!st.name.empty()) {
+      checkName(st.name, p + ".name");
+      if (auto [it, fresh] = names.emplace(st.name, i); !fresh)
+        fail(p + ".name",
+             "duplicate name '" + st.name + "' (also " + at("steps", it->second) + ")");
+    }
+    if (!(st.endTime > previous && std::isfinite(st.endTime)))
+      fail(p + ".end_time", "must be after " +
+                                std::string(i ? "the previous step's end, " : "the start, ") +
+                                num(previous) + ", got " + num(st.endTime));
+    previous = st.endTime;
+    atLeast(st.increments, 1, p + ".increments");
+    atLeast(st.maxIterations, 1, p + ".max_iterations");
+    positive(st.forceTolerance, p + ".force_tolerance");
+    positive(st.incrementTolerance, p + ".increment_tolerance");
+    atLeast(st.maxCutbacks, 0, p + ".max_cutbacks");
+    atLeast(st.outputEvery, 1, p + ".output_every");
+  }
+}
+
+void validateAngle(double rad, const std::string& path) {
+  const double deg = rad * 180 / std::numbers::pi;
+  if (!std::isnan(rad) && !(deg >= 0 && deg <= 90))
+    fail(path, "must be in [0, 90] degrees, got " + num(deg));
+}
+
+void validateContact(const ContactDef& c) {
+  positiveOrDefault(c.proximityDistance, "contact.proximity_distance");
+  positiveOrDefault(c.testPointSpacing, "contact.test_point_spacing");
+  validateAngle(c.thetaCross, "contact.theta_cross_deg");
+  validateAngle(c.thetaParallel, "contact.theta_parallel_deg");
+  if (c.thetaParallel > c.thetaCross)
+    fail("contact.theta_parallel_deg",
+         "must not exceed theta_cross_deg (" + num(c.thetaCross * 180 / std::numbers::pi) + ")");
+  positiveOrDefault(c.selfContactSeparation, "contact.self_contact_separation");
+  if (!std::isnan(c.skin)) nonNegative(c.skin, "contact.skin");
+  positiveOrDefault(c.maxPenetration, "contact.max_penetration");
+  positive(c.regularisation, "contact.regularisation");
+  positiveOrDefault(c.initialPenalty, "contact.initial_penalty");
+  if (!(c.penaltyChange >= 1 && std::isfinite(c.penaltyChange)))
+    fail("contact.penalty_change", "must be >= 1, got " + num(c.penaltyChange));
+  nonNegative(c.friction, "contact.friction");
+  positiveOrDefault(c.maxReversibleSlip, "contact.max_reversible_slip");
+  atLeast(c.maxDetectionLoops, 1, "contact.max_detection_loops");
+  atLeast(c.maxNormalLoops, 1, "contact.max_normal_loops");
+}
+
+void validateTools(const SceneDef& s) {
+  uniqueNames(s.tools, "tools");
+  for (size_t i = 0; i < s.tools.size(); ++i) {
+    const ToolDef& t = s.tools[i];
+    const std::string p = at("tools", i);
+    finite(t.point, p + ".point");
+    nonZero(t.direction, p + (t.kind == ToolKind::Plane ? ".normal" : ".axis"));
+    if (t.kind == ToolKind::Cylinder) positive(t.radius, p + ".radius");
+    validateMotion(t, p);
+    nonNegative(t.friction, p + ".friction");
+    positiveOrDefault(t.maxPenetration, p + ".max_penetration");
+  }
+}
+
+void validateStabilisation(const StabilisationDef& st, const Names& fibres) {
+  nonNegative(st.stiffness, "stabilisation.stiffness");
+  for (size_t i = 0; i < st.fibres.size(); ++i)
+    resolve(fibres, st.fibres[i], "fibre", at("stabilisation.fibres", i));
+}
+
+void validateOutput(const SceneDef& s, const Names& fibres) {
+  finite(s.output.momentPoint, "output.moment_point");
+  uniqueNames(s.output.probes, "output.probes");
+  for (size_t i = 0; i < s.output.probes.size(); ++i) {
+    const ProbeDef& pr = s.output.probes[i];
+    const std::string p = at("output.probes", i);
+    const FibreDef& f = s.fibres[resolve(fibres, pr.fibre, "fibre", p + ".fibre")];
+    if (pr.node < 0 || pr.node >= nodeCount(f))
+      fail(p + ".node", "node " + std::to_string(pr.node) + " outside 0.." +
+                            std::to_string(nodeCount(f) - 1) + " (fibre '" + pr.fibre + "')");
+  }
+}
+
+}  // namespace
+
+void validateTable(const TableDef& table, const std::string& path) {
+  if (table.t.size() != table.v.size())
+    fail(path, std::to_string(table.t.size()) + " times but " + std::to_string(table.v.size()) +
+                   " values");
+  if (table.t.empty()) fail(path, "must have at least one point [t, v]");
+  for (size_t i = 0; i < table.t.size(); ++i) {
+    finite(table.t[i], at(path, i) + "[0]");
+    finite(table.v[i], at(path, i) + "[1]");
+    if (i > 0 && !(table.t[i] > table.t[i - 1]))
+      fail(at(path, i), "time " + num(table.t[i]) + " does not follow " + num(table.t[i - 1]) +
+                            " (times must increase strictly)");
+  }
+}
+
+void validateScene(const SceneDef& s) {
+  if (s.units != "mm-N-MPa") fail("units", "must be \"mm-N-MPa\", got \"" + s.units + "\"");
+  const Names materials = validateMaterials(s);
+  const Names fibres = validateFibres(s, materials);
+  const Groups groups = validateGroups(s, fibres);
+  validateBcs(s, groups);
+  validateLoads(s, groups);
+  validateSteps(s);
+  validateContact(s.contact);
+  validateTools(s);
+  validateStabilisation(s.stabilisation, fibres);
+  validateOutput(s, fibres);
+}
+
+}  // namespace fibra

@@ -1,0 +1,140 @@
+#include "systems/history_writer.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+namespace fibra {
+namespace {
+
+void appendVec(std::vector<double>& row, const Vec3& v) {
+  row.insert(row.end(), v.data(), v.data() + 3);
+}
+
+void addNames(std::vector<std::string>& names, const std::string& prefix,
+              std::initializer_list<const char*> suffixes) {
+  for (const char* s : suffixes) names.push_back(prefix + "." + s);
+}
+
+// Global node of each probe.
+std::vector<Index> probeNodes(const World& world) {
+  const FibreStore& fs = world.fibres();
+  std::vector<Index> nodes;
+  for (const ProbeDef& p : world.scene().output.probes) {
+    const auto f = std::find(fs.name.begin(), fs.name.end(), p.fibre);
+    if (f == fs.name.end())
+      throw std::invalid_argument("probe '" + p.name + "': unknown fibre '" + p.fibre + "'");
+    nodes.push_back(fs.firstNode[f - fs.name.begin()] + p.node);
+  }
+  return nodes;
+}
+
+}  // namespace
+
+HistoryColumns incrementColumns() {
+  return {{"time", "step", "increment", "load_factor", "iterations", "total_iterations", "cutbacks",
+           "residual", "wall_s"},
+          [](const World&, const StepReport& r, std::vector<double>& row) {
+            row.insert(row.end(), {r.time, double(r.step + 1), double(r.increment), r.loadFactor,
+                                   double(r.iterations), double(r.totalIterations),
+                                   double(r.cutbacks), r.residual, r.timings.total});
+          }};
+}
+
+HistoryColumns reactionColumns(const World& world) {
+  const std::vector<BcDef>& bcs = world.scene().bcs;
+  std::map<std::string, int> uses;
+  for (const BcDef& b : bcs) ++uses[b.group];
+  HistoryColumns c;
+  for (size_t b = 0; b < bcs.size(); ++b) {
+    std::string name = bcs[b].group;
+    if (uses[name] > 1) name += '#' + std::to_string(b);
+    addNames(c.names, "reaction." + name, {"fx", "fy", "fz", "mx", "my", "mz"});
+  }
+  const Index count = Index(bcs.size());
+  c.values = [count](const World& w, const StepReport&, std::vector<double>& row) {
+    for (Index b = 0; b < count; ++b) {
+      const Reaction r = w.reaction(b);
+      appendVec(row, r.force);
+      appendVec(row, r.moment);
+    }
+  };
+  return c;
+}
+
+HistoryColumns toolColumns(const World& world) {
+  HistoryColumns c;
+  for (const ToolDef& t : world.scene().tools)
+    addNames(c.names, "tool." + t.name, {"fx", "fy", "fz"});
+  const Index count = Index(world.scene().tools.size());
+  c.values = [count](const World& w, const StepReport&, std::vector<double>& row) {
+    for (Index t = 0; t < count; ++t) appendVec(row, w.toolReaction(t));
+  };
+  return c;
+}
+
+HistoryColumns probeColumns(const World& world) {
+  HistoryColumns c;
+  for (const ProbeDef& p : world.scene().output.probes)
+    addNames(c.names, "probe." + p.name, {"x", "y", "z"});
+  c.values = [nodes = probeNodes(world)](const World& w, const StepReport&,
+                                         std::vector<double>& row) {
+    for (Index n : nodes) appendVec(row, x0Of(w.fibres().q, n));
+  };
+  return c;
+}
+
+std::vector<HistoryColumns> standardHistoryColumns(const World& world) {
+  return {incrementColumns(), reactionColumns(world), toolColumns(world), probeColumns(world)};
+}
+
+HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns)
+    : columns_(std::move(columns)) {
+  std::set<std::string> seen;
+  for (const HistoryColumns& family : columns_)
+    for (const std::string& name : family.names) {
+      if (!seen.insert(name).second)
+        throw std::invalid_argument("history column '" + name + "' repeated");
+      header_.push_back(name);
+    }
+  file_ = std::make_unique<OutputFile>(path);
+  std::string line;
+  for (const std::string& name : header_) line += (line.empty() ? "" : ",") + name;
+  file_->stream() << line << '\n';
+  file_->flush();
+}
+
+HistoryWriter::~HistoryWriter() {
+  try {
+    close();
+  } catch (const std::exception&) {
+    // Destructors run on error paths, where the first error is the one to report.
+  }
+}
+
+void HistoryWriter::append(const World& world, const StepReport& report) {
+  if (file_->committed()) throw std::logic_error("history appended after close()");
+  row_.clear();
+  for (size_t k = 0; k < columns_.size(); ++k) {
+    const size_t before = row_.size();
+    columns_[k].values(world, report, row_);
+    if (row_.size() - before != columns_[k].names.size())
+      throw std::logic_error("history column family " + std::to_string(k) + " gave " +
+                             std::to_string(row_.size() - before) + " values for " +
+                             std::to_string(columns_[k].names.size()) + " columns");
+  }
+  std::string line;
+  for (size_t i = 0; i < row_.size(); ++i) {
+    if (i) line += ',';
+    appendNumber(line, row_[i]);
+  }
+  file_->stream() << line << '\n';
+  file_->flush();
+}
+
+void HistoryWriter::close() {
+  if (!file_->committed()) file_->commit();
+}
+
+}  // namespace fibra

@@ -1,0 +1,74 @@
+// History writer system: a CSV file with one row per converged increment.
+//
+// Reads  the World (reactions, tool reactions, fibre state) and the increment's StepReport,
+//        through column families; writes PATH.part row by row (each row whole and flushed) and
+//        renames it to PATH on close(), so PATH exists only complete (interrupted runs included:
+//        it then holds every increment that converged). Serial; the caller's thread.
+//
+// Columns come in families, each contributed by one system: a header list and a function that
+// appends as many values per row. A system adds its columns by adding a family:
+//
+//   std::vector<HistoryColumns> columns = standardHistoryColumns(world);
+//   columns.push_back({{"contact.zones", "contact.elements"},
+//                      [](const World&, const StepReport& r, std::vector<double>& row) {
+//                        row.push_back(r.contact.zones);
+//                        row.push_back(r.contact.elements);
+//                      }});
+//   HistoryWriter history(dir + "/history.csv", std::move(columns));
+//   ... history.append(world, report) after every converged increment ...
+//   history.close();
+//
+// Column names must be unique across families; values are written as the shortest decimal that
+// reads back exactly.
+#pragma once
+
+#include "engine/world.h"
+#include "systems/output_file.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fibra {
+
+struct HistoryColumns {
+  std::vector<std::string> names;
+  // Appends names.size() values for the world's current (converged) state.
+  std::function<void(const World&, const StepReport&, std::vector<double>& row)> values;
+};
+
+// time, step (1-based), increment (1-based within the step), load_factor (fraction of the
+// step), iterations (Newton, accepted attempt), total_iterations (all attempts), cutbacks,
+// residual (relative), wall_s (seconds of the increment).
+HistoryColumns incrementColumns();
+// Per boundary condition: reaction.G.fx .fy .fz (N) and .mx .my .mz (N mm, about
+// output.moment_point), World::reaction: what the held DOFs exert on the fibres, balancing the
+// loads. G is the group ("G#i" for boundary condition i when groups repeat).
+HistoryColumns reactionColumns(const World& world);
+// Per tool T: tool.T.fx .fy .fz, the force the fibres exert on it (N).
+HistoryColumns toolColumns(const World& world);
+// Per probe P: probe.P.x .y .z, the position of its node (mm).
+HistoryColumns probeColumns(const World& world);
+// All of the above, in that order.
+std::vector<HistoryColumns> standardHistoryColumns(const World& world);
+
+class HistoryWriter {
+ public:
+  // Writes the header line; throws std::invalid_argument for repeated column names and
+  // std::runtime_error when the file cannot be written.
+  HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns);
+  ~HistoryWriter();  // closes, errors ignored
+
+  void append(const World& world, const StepReport& report);  // one row, flushed
+  void close();  // PATH.part -> PATH; later calls do nothing
+  const std::vector<std::string>& header() const { return header_; }
+
+ private:
+  std::vector<HistoryColumns> columns_;
+  std::vector<std::string> header_;
+  std::unique_ptr<OutputFile> file_;
+  std::vector<double> row_;
+};
+
+}  // namespace fibra
