@@ -66,7 +66,7 @@ struct ContactReport {
   int elements = 0;            // fibre-fibre contact elements
   int toolElements = 0;        // fibre-tool contact elements
   int active = 0;              // elements with a positive normal force
-  int sliding = 0;             // elements in slip
+  int sliding = 0;             // elements whose friction is >= 99% of mu R_N (kSlidingShare)
   double maxPenetration = 0;   // over all elements, mm
   double maxPenetrationRatio = 0;  // max over zones of penetration / p_max
   double stabilisation = 0;    // |stabilisation forces| / F_ref at convergence

@@ -23,6 +23,11 @@
 
 namespace fibra {
 
+// The report counts an element as sliding when its friction force is at least this share of
+// the Coulomb limit mu R_N (a re-detected element starts a little inside the limit: its
+// reversible slip is interpolated from the recorded history).
+inline constexpr double kSlidingShare = 0.99;
+
 // Contact parameters resolved from the scene (defaults derived from the radii).
 struct ContactSettings {
   bool tools = false;              // the scene has tools

@@ -74,6 +74,23 @@ HistoryColumns toolColumns(const World& world) {
   return c;
 }
 
+HistoryColumns contactColumns(const World& world) {
+  const SceneDef& s = world.scene();
+  if (!s.contact.enabled && s.tools.empty())
+    return {{}, [](const World&, const StepReport&, std::vector<double>&) {}};
+  return {{"contact.zones", "contact.elements", "contact.tool_elements", "contact.active",
+           "contact.sliding", "contact.max_penetration", "contact.max_penetration_ratio",
+           "contact.detection_loops", "contact.normal_loops", "contact.restarts",
+           "contact.stabilisation"},
+          [](const World&, const StepReport& r, std::vector<double>& row) {
+            const ContactReport& c = r.contact;
+            row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
+                                   double(c.active), double(c.sliding), c.maxPenetration,
+                                   c.maxPenetrationRatio, double(c.detectionLoops),
+                                   double(c.normalLoops), double(c.restarts), c.stabilisation});
+          }};
+}
+
 HistoryColumns probeColumns(const World& world) {
   HistoryColumns c;
   for (const ProbeDef& p : world.scene().output.probes)
@@ -86,7 +103,8 @@ HistoryColumns probeColumns(const World& world) {
 }
 
 std::vector<HistoryColumns> standardHistoryColumns(const World& world) {
-  return {incrementColumns(), reactionColumns(world), toolColumns(world), probeColumns(world)};
+  return {incrementColumns(), reactionColumns(world), toolColumns(world), contactColumns(world),
+          probeColumns(world)};
 }
 
 HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns)

@@ -48,6 +48,10 @@ HistoryColumns incrementColumns();
 HistoryColumns reactionColumns(const World& world);
 // Per tool T: tool.T.fx .fy .fz, the force the fibres exert on it (N).
 HistoryColumns toolColumns(const World& world);
+// With contact or tools: contact.zones, .elements, .tool_elements, .active, .sliding (counts),
+// .max_penetration (mm), .max_penetration_ratio (of p_max), .detection_loops, .normal_loops,
+// .restarts (loops A and B of the increment), .stabilisation (|stabilisation forces| / F_ref).
+HistoryColumns contactColumns(const World& world);
 // Per probe P: probe.P.x .y .z, the position of its node (mm).
 HistoryColumns probeColumns(const World& world);
 // All of the above, in that order.
