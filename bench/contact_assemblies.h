@@ -119,7 +119,8 @@ inline FibreStore twistedYarn(const YarnDef& y = {}) {
     const int n = ring == 0 ? 1 : int(std::floor(2 * std::numbers::pi * r / d));
     for (int k = 0; k < n && made < y.fibres; ++k, ++made) {
       FibreDef f;
-      f.name = "y" + std::to_string(made);
+      f.name = "y";  // appended, not "y" + ...: GCC 12 warns falsely (-Wrestrict) on the latter
+      f.name += std::to_string(made);
       f.radius = y.radius;
       f.elements = y.elements;
       f.order = 2;
