@@ -16,6 +16,7 @@
 #include "components/boundary.h"
 #include "components/contact.h"
 #include "components/contact_mechanics.h"
+#include "components/contact_snapshot.h"
 #include "components/tools.h"
 #include "components/fibres.h"
 #include "engine/scene.h"
@@ -127,6 +128,7 @@ class World {
   const ContactElementStore& contactElements() const;    // their geometry
   const ContactMechanicsStore& contactMechanics() const; // their forces (last assembly)
   const ToolContactStore& toolContacts() const;
+  ContactSnapshot contactSnapshot() const;  // all contact elements, flattened for output
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
 
  private:
