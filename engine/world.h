@@ -17,6 +17,7 @@
 #include "components/contact.h"
 #include "components/contact_mechanics.h"
 #include "components/contact_snapshot.h"
+#include "systems/linear_solver.h"
 #include "components/tools.h"
 #include "components/fibres.h"
 #include "engine/scene.h"
@@ -95,6 +96,8 @@ struct WorldDef {
   std::function<void(const Progress&)> progress;  // after every Newton iteration
   std::function<bool()> cancel;         // polled between iterations; true stops the step
   Trace* trace = nullptr;               // records the systems' spans when set (engine/trace.h)
+  LuSolver luSolver = LuSolver::EigenSparseLu;  // non-symmetric tangents (friction); see
+                                                // docs/RESULTS.md for the measurement
 };
 
 // Net reaction of a boundary condition: sum of -r over its held DOFs.
