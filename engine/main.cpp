@@ -159,8 +159,15 @@ class Outputs {
 
  private:
   void frame(const World& world) {
-    if (vtu_) vtu_->write(world.fibres(), world.fibres().q, world.time());
     framed_ = world.time();
+    if (!vtu_) return;
+    const SceneDef& s = world.scene();
+    if (s.contact.enabled || !s.tools.empty()) {
+      const ContactSnapshot contacts = world.contactSnapshot();
+      vtu_->write(world.fibres(), world.fibres().q, world.time(), &contacts);
+    } else {
+      vtu_->write(world.fibres(), world.fibres().q, world.time());
+    }
   }
   std::string dir_;
   OutputDef def_;

@@ -172,6 +172,7 @@ void buildIterationGraph(WorldState& w) {
 void buildWorld(WorldState& w) {
   if (w.scene.units != "mm-N-MPa")
     throw SceneError("units: only \"mm-N-MPa\" is supported, got \"" + w.scene.units + "\"");
+  w.solver.setLuSolver(w.def.luSolver);
   if (w.def.arena) {
     w.arena = w.def.arena;
   } else {

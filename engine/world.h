@@ -16,6 +16,8 @@
 #include "components/boundary.h"
 #include "components/contact.h"
 #include "components/contact_mechanics.h"
+#include "components/contact_snapshot.h"
+#include "systems/linear_solver.h"
 #include "components/tools.h"
 #include "components/fibres.h"
 #include "engine/scene.h"
@@ -94,6 +96,8 @@ struct WorldDef {
   std::function<void(const Progress&)> progress;  // after every Newton iteration
   std::function<bool()> cancel;         // polled between iterations; true stops the step
   Trace* trace = nullptr;               // records the systems' spans when set (engine/trace.h)
+  LuSolver luSolver = LuSolver::EigenSparseLu;  // non-symmetric tangents (friction); see
+                                                // docs/RESULTS.md for the measurement
 };
 
 // Net reaction of a boundary condition: sum of -r over its held DOFs.
@@ -127,6 +131,7 @@ class World {
   const ContactElementStore& contactElements() const;    // their geometry
   const ContactMechanicsStore& contactMechanics() const; // their forces (last assembly)
   const ToolContactStore& toolContacts() const;
+  ContactSnapshot contactSnapshot() const;  // all contact elements, flattened for output
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
 
  private:

@@ -1,6 +1,7 @@
 #include "systems/linear_solver.h"
 
 #include <Eigen/CholmodSupport>
+#include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
 #include <chrono>
 
@@ -18,7 +19,9 @@ enum class Active { None, Llt, Ldlt, Lu };
 struct LinearSolver::Impl {
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
   Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt;
-  Eigen::UmfPackLU<SparseMatrix> lu;
+  Eigen::UmfPackLU<SparseMatrix> umfpack;
+  Eigen::SparseLU<SparseMatrix> sparseLu;
+  LuSolver luKind = LuSolver::EigenSparseLu;
   Index lltRevision = -1, ldltRevision = -1, luRevision = -1;
   Active active = Active::None;
   LinearSolveStats stats;
@@ -46,14 +49,21 @@ struct LinearSolver::Impl {
 };
 
 LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
+
+void LinearSolver::setLuSolver(LuSolver lu) {
+  if (impl_->luKind != lu) impl_->luRevision = -1;
+  impl_->luKind = lu;
+}
 LinearSolver::~LinearSolver() = default;
 
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   Impl& m = *impl_;
   m.active = Active::None;
   if (!ls.symmetric) {
-    if (!m.run(m.lu, m.luRevision, ls.K, ls.revision)) {
-      message = "UMFPACK: singular tangent";
+    const bool umfpack = m.luKind == LuSolver::Umfpack;
+    if (umfpack ? !m.run(m.umfpack, m.luRevision, ls.K, ls.revision)
+                : !m.run(m.sparseLu, m.luRevision, ls.K, ls.revision)) {
+      message = umfpack ? "UMFPACK: singular tangent" : "SparseLU: singular tangent";
       return false;
     }
     m.active = Active::Lu;
@@ -79,7 +89,12 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   switch (m.active) {
     case Active::Llt: x = m.llt.solve(b); break;
     case Active::Ldlt: x = m.ldlt.solve(b); break;
-    case Active::Lu: x = m.lu.solve(b); break;
+    case Active::Lu:
+      if (m.luKind == LuSolver::Umfpack)
+        x = m.umfpack.solve(b);
+      else
+        x = m.sparseLu.solve(b);
+      break;
     case Active::None: x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN()); break;
   }
   m.stats.solve += seconds(t0);

@@ -5,7 +5,8 @@
 //   only when the pattern revision changes, the numeric factorisation every call. A tangent
 //   that is not positive definite (unstable equilibria, buckling) falls back to CHOLMOD's
 //   simplicial LDL^T for that call, and the report says so.
-// Non-symmetric K (friction): UMFPACK LU with the same analysis reuse.
+// Non-symmetric K (friction): sparse LU with the same analysis reuse, by UMFPACK or by Eigen's
+//   SparseLU (LuSolver; which is faster is measured in bench/contact_mechanics.cpp).
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). BLAS threads are
 // a process setting left to the program (the `fibra` program matches them to --threads).
 #pragma once
@@ -22,6 +23,8 @@ struct LinearSolveStats {
   int analyses = 0, factorisations = 0, fallbacks = 0;
 };
 
+enum class LuSolver { Umfpack, EigenSparseLu };
+
 class LinearSolver {
  public:
   LinearSolver();
@@ -35,6 +38,7 @@ class LinearSolver {
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
   const LinearSolveStats& stats() const;
+  void setLuSolver(LuSolver lu);  // for non-symmetric K; default EigenSparseLu
 
  private:
   struct Impl;

@@ -11,7 +11,7 @@
 namespace fibra {
 namespace {
 
-constexpr int kPolyLine = 4, kPolygon = 7, kQuad = 9;  // VTK cell types
+constexpr int kLine = 3, kPolyLine = 4, kPolygon = 7, kQuad = 9;  // VTK cell types
 
 struct Cells {
   std::vector<std::int64_t> connectivity, offsets;
@@ -102,7 +102,54 @@ PointArrays buildPoints(const FibreStore& fs, const Eigen::VectorXd& q, int side
   return p;
 }
 
+void vtuHeader(std::ostream& out, size_t points, size_t cells) {
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
+         "header_type=\"UInt64\">\n<UnstructuredGrid>\n"
+      << "<Piece NumberOfPoints=\"" << points << "\" NumberOfCells=\"" << cells << "\">\n";
+}
+
+std::vector<double> flatten(const std::vector<Vec3>& v) {
+  std::vector<double> out;
+  out.reserve(3 * v.size());
+  for (const Vec3& x : v) out.insert(out.end(), x.data(), x.data() + 3);
+  return out;
+}
+
 }  // namespace
+
+void writeContactVtu(const std::string& path, const ContactSnapshot& c) {
+  const Index n = c.size();
+  std::vector<double> points;
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<int> types(n, kLine), fibreI(c.fibreI.begin(), c.fibreI.end()),
+      fibreJ(c.fibreJ.begin(), c.fibreJ.end());
+  for (Index e = 0; e < n; ++e) {
+    for (const Vec3& x : {c.particleI[e], c.particleJ[e]}) points.insert(points.end(), x.data(), x.data() + 3);
+    connectivity.insert(connectivity.end(), {2 * e, 2 * e + 1});
+    offsets.push_back(2 * e + 2);
+  }
+  OutputFile file(path);
+  std::ostream& out = file.stream();
+  vtuHeader(out, 2 * size_t(n), size_t(n));
+  out << "<CellData Scalars=\"normal_force\" Vectors=\"normal\">\n";
+  dataArray(out, "Float64", "normal", 3, flatten(c.normal));
+  dataArray(out, "Float64", "gap", 1, c.gap);
+  dataArray(out, "Float64", "normal_force", 1, c.normalForce);
+  dataArray(out, "Float64", "friction", 3, flatten(c.friction));
+  dataArray(out, "UInt8", "slip", 1, c.slip);
+  dataArray(out, "UInt8", "tool", 1, c.tool);
+  dataArray(out, "Int32", "fibre_i", 1, fibreI);
+  dataArray(out, "Int32", "fibre_j", 1, fibreJ);
+  out << "</CellData>\n<Points>\n";
+  dataArray(out, "Float64", nullptr, 3, points);
+  out << "</Points>\n<Cells>\n";
+  dataArray(out, "Int64", "connectivity", 1, connectivity);
+  dataArray(out, "Int64", "offsets", 1, offsets);
+  dataArray(out, "UInt8", "types", 1, types);
+  out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  file.commit();
+}
 
 void writeVtu(const std::string& path, const FibreStore& fs, const Eigen::VectorXd& q,
               const VtuDef& def) {
@@ -111,11 +158,8 @@ void writeVtu(const std::string& path, const FibreStore& fs, const Eigen::Vector
   const Cells c = buildCells(fs, def.tubeSides);
   OutputFile file(path);
   std::ostream& out = file.stream();
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n<UnstructuredGrid>\n"
-      << "<Piece NumberOfPoints=\"" << p.radius.size() << "\" NumberOfCells=\"" << c.type.size()
-      << "\">\n<PointData Scalars=\"radius\">\n";
+  vtuHeader(out, p.radius.size(), c.type.size());
+  out << "<PointData Scalars=\"radius\">\n";
   dataArray(out, "Float64", "radius", 1, p.radius);
   dataArray(out, "Float64", "g1", 3, p.g1);
   dataArray(out, "Float64", "g2", 3, p.g2);
@@ -136,19 +180,23 @@ void writeVtu(const std::string& path, const FibreStore& fs, const Eigen::Vector
 VtuSeries::VtuSeries(std::string dir, std::string name, VtuDef def)
     : dir_(std::move(dir)), name_(std::move(name)), def_(def) {}
 
-std::string VtuSeries::framePath(int frame) const {
+std::string VtuSeries::framePath(int frame, const char* part) const {
   char index[16];
   std::snprintf(index, sizeof index, "_%04d.vtu", frame);
-  return name_ + index;
+  return name_ + part + index;
 }
 
 std::string VtuSeries::pvdPath() const {
   return (std::filesystem::path(dir_) / (name_ + ".pvd")).string();
 }
 
-void VtuSeries::write(const FibreStore& fibres, const Eigen::VectorXd& q, double time) {
-  writeVtu((std::filesystem::path(dir_) / framePath(frames())).string(), fibres, q, def_);
+void VtuSeries::write(const FibreStore& fibres, const Eigen::VectorXd& q, double time,
+                      const ContactSnapshot* contacts) {
+  const std::filesystem::path dir(dir_);
+  writeVtu((dir / framePath(frames())).string(), fibres, q, def_);
+  if (contacts) writeContactVtu((dir / framePath(frames(), "_contacts")).string(), *contacts);
   times_.push_back(time);
+  contacts_.push_back(contacts != nullptr);
   OutputFile pvd(pvdPath());
   std::string text =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
@@ -156,6 +204,10 @@ void VtuSeries::write(const FibreStore& fibres, const Eigen::VectorXd& q, double
     text += "<DataSet timestep=\"";
     appendNumber(text, times_[i]);
     text += "\" part=\"0\" file=\"" + framePath(i) + "\"/>\n";
+    if (!contacts_[i]) continue;
+    text += "<DataSet timestep=\"";
+    appendNumber(text, times_[i]);
+    text += "\" part=\"1\" file=\"" + framePath(i, "_contacts") + "\"/>\n";
   }
   text += "</Collection>\n</VTKFile>\n";
   pvd.stream() << text;

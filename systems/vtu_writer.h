@@ -14,10 +14,15 @@
 //           consecutive sections, outward-facing, and a polygon closing each end (part 1).
 //   point data  radius (mm), g1, g2 (the node's directors), fibre (index in the store);
 //   cell data   fibre, part (0 centreline, 1 surface).
+// Contact files (writeContactVtu): one line cell per contact element from x^I to x^J (for a
+// tool: to the surface point below x^I), cell data normal, gap (mm), normal_force (N), friction
+// (N, on I), slip (1 sliding), tool (1 fibre-tool), fibre_i, fibre_j. Glyph the Cell Centers by
+// normal scaled by normal_force to see the contact forces.
 // In ParaView the surface shows as is; for tubes drawn around the centrelines instead:
 // Threshold part = 0, Extract Surface, Tube (vary radius by "radius").
 #pragma once
 
+#include "components/contact_snapshot.h"
 #include "components/fibres.h"
 
 #include <string>
@@ -32,21 +37,26 @@ struct VtuDef {
 void writeVtu(const std::string& path, const FibreStore& fibres, const Eigen::VectorXd& q,
               const VtuDef& def = {});
 
+void writeContactVtu(const std::string& path, const ContactSnapshot& contacts);
+
 // A series in `dir`: NAME_0000.vtu, NAME_0001.vtu, ... and NAME.pvd listing them with their
-// pseudo-times. After every write() the PVD lists exactly the frames on disk.
+// pseudo-times (part 0); with contacts, NAME_contacts_0000.vtu, ... as part 1 of each time.
+// After every write() the PVD lists exactly the frames on disk.
 class VtuSeries {
  public:
   explicit VtuSeries(std::string dir, std::string name = "result", VtuDef def = {});
 
-  void write(const FibreStore& fibres, const Eigen::VectorXd& q, double time);
+  void write(const FibreStore& fibres, const Eigen::VectorXd& q, double time,
+             const ContactSnapshot* contacts = nullptr);
   int frames() const { return int(times_.size()); }
   std::string pvdPath() const;
 
  private:
-  std::string framePath(int frame) const;
+  std::string framePath(int frame, const char* part = "") const;
   std::string dir_, name_;
   VtuDef def_;
   std::vector<double> times_;
+  std::vector<bool> contacts_;  // per frame: a contact file was written
 };
 
 }  // namespace fibra

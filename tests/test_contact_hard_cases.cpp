@@ -2,8 +2,11 @@
 // large for Newton (cutbacks rescue it), penalties adapted until the deepest penetration sits at
 // p_max; never a NaN, never a silent non-convergence.
 #include "beam_fixtures.h"
+#include "contact_scenes.h"
 
 #include <doctest/doctest.h>
+
+#include <numbers>
 
 using namespace fibra;
 using namespace fibra::test;
@@ -94,4 +97,39 @@ TEST_CASE("penalty adaptation brings the deepest penetration just under p_max") 
   CHECK(r.contact.active > 0);
   CHECK(r.contact.maxPenetrationRatio <= 1);    // aimed at 0.9 p_max,
   CHECK(r.contact.maxPenetrationRatio >= 0.8);  // and reached
+}
+
+TEST_CASE("beams pressed together at angles around theta_parallel and theta_cross converge") {
+  // Two simply supported beams, B above A and turned by theta about z, B's midspan pushed down
+  // by P. Near theta_parallel (5 deg) the normals switch from the centre-to-centre direction to
+  // the blend; near theta_cross (20 deg) from the blend to t^A x t^B. Every angle must converge
+  // with finite forces, the contact carrying part of P within the allowed penetration.
+  const double P = 0.02, pMax = 1e-4;
+  for (double degrees : {2.0, 4.5, 5.0, 5.5, 12.0, 19.5, 20.5}) {
+    CAPTURE(degrees);
+    SceneDef s = crossingBeams(P, pMax);
+    const double th = degrees * std::numbers::pi / 180;
+    const Vec3 along(std::cos(th), std::sin(th), 0);  // B's axis, at theta from A's (x)
+    s.fibres[1].geometry.points = {Vec3(0, 0, 0.2) - 2 * along, Vec3(0, 0, 0.2) + 2 * along};
+    for (BcDef& b : s.bcs)  // B's spin about its own axis turns g1 = z mostly along y now
+      if (b.group == "B.start" && b.dofs[G1X]) b.dofs[G1X] = false, b.dofs[G1Y] = true;
+    World w(s);
+    StepReport r;
+    while (!w.finished()) {
+      r = w.step();
+      INFO(r.message);
+      REQUIRE(r.status == StepStatus::Converged);
+      REQUIRE(std::isfinite(r.residual));
+    }
+    double carried = 0;  // z force the contact puts on A, N
+    const ContactSnapshot c = w.contactSnapshot();
+    for (Index e = 0; e < c.size(); ++e) {
+      REQUIRE(std::isfinite(c.normalForce[e]));
+      carried += (c.fibreI[e] == 0 ? 1 : -1) * c.normalForce[e] * c.normal[e].z();
+    }
+    CHECK(carried < 0);  // A is pushed down
+    CHECK(-carried > 0.3 * P);
+    CHECK(-carried < P);
+    CHECK(r.contact.maxPenetration <= 1.5 * pMax);
+  }
 }

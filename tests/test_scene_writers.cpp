@@ -4,6 +4,7 @@
 #include "engine/fibre_builder.h"
 #include "engine/scene_loader.h"
 #include "engine/world.h"
+#include "contact_scenes.h"
 #include "scene_test_util.h"
 #include "systems/history_writer.h"
 #include "systems/output_file.h"
@@ -133,6 +134,41 @@ TEST_CASE("VTU series: the PVD lists exactly the frames written, with their time
   for (const auto& [time, file] : listed) CHECK(fs::exists(dir / file));
   for (const auto& entry : fs::directory_iterator(dir.path()))
     CHECK(entry.path().extension() != ".part");
+}
+
+TEST_CASE("contact VTU: one line per contact element, forces that balance the load") {
+  // Two crossing beams pressed together by P at B's midspan: the contact file holds the
+  // elements from x^I to x^J with their normal forces, which sum to the P/2 the contact carries.
+  const double P = 0.02;
+  World world(crossingBeams(P, 1e-4), oneThread());
+  while (!world.finished()) REQUIRE(world.step().status == StepStatus::Converged);
+  const ContactSnapshot c = world.contactSnapshot();
+  REQUIRE(c.size() >= 1);
+  TempDir dir("contact_vtu");
+  fs::create_directories(dir.path());
+  VtuSeries series(dir.path().string());
+  series.write(world.fibres(), world.fibres().q, world.time(), &c);
+  series.write(world.fibres(), world.fibres().q, 2 * world.time());  // a frame without contacts
+  const std::string xml = readFile(dir / "result_contacts_0000.vtu");
+  const std::vector<double> points = dataArray(xml.substr(xml.find("<Points>")), "<DataArray");
+  const std::vector<double> normal = dataArray(xml, "Name=\"normal\""),
+                            force = dataArray(xml, "Name=\"normal_force\""),
+                            gap = dataArray(xml, "Name=\"gap\"");
+  REQUIRE(points.size() == 6 * size_t(c.size()));
+  REQUIRE(force.size() == size_t(c.size()));
+  double total = 0;
+  for (Index e = 0; e < c.size(); ++e) {
+    const Vec3 xI = point(points, 2 * e), xJ = point(points, 2 * e + 1), N = point(normal, e);
+    CHECK((xI - c.particleI[e]).norm() == 0);
+    CHECK(N.norm() == doctest::Approx(1));
+    CHECK((xI - xJ).dot(N) == doctest::Approx(gap[e]).epsilon(1e-9));
+    total += force[e] * std::abs(N.z());
+  }
+  CHECK(total == doctest::Approx(P / 2).epsilon(0.02));
+  const std::string pvd = readFile(dir / "result.pvd");
+  CHECK(pvd.find("part=\"1\" file=\"result_contacts_0000.vtu\"") != std::string::npos);
+  CHECK(pvd.find("result_contacts_0001.vtu") == std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "result_contacts_0001.vtu"));
 }
 
 TEST_CASE("state writer: every node's nine values read back exactly") {

@@ -2,7 +2,8 @@
 // pressed on beam A by 0.1 N at each end, is moved back and forth by 0.75 mm. Checks: every
 // increment converges, each leg sticks then slips, in slip the contact force on B (taken from
 // B's equilibrium, not from the law) has a tangential part mu times its normal part within 2%,
-// and the second cycle repeats the first within 2% of the peak force.
+// the contact crosses an element boundary of B in every leg, and the second cycle repeats the
+// first within 2% of the peak force.
 #include "engine/scene_loader.h"
 #include "engine/world.h"
 
@@ -23,6 +24,7 @@ struct Row {
   double normal = 0;       // contact force on B, part along the contact normal, N
   bool sliding = false;
   int iterations = 0;
+  double sB = 0;           // arc length of the contact on B, mm (first element)
 };
 
 // The force the contact exerts on B balances B's holds and its two end loads (the stabilisation
@@ -44,6 +46,8 @@ Row measure(const World& w, const StepReport& r) {
   row.normal = onB.dot(n);
   row.tangential = (onB - row.normal * n).norm();
   row.sliding = r.contact.sliding > 0;
+  const ContactElementStore& el = w.contactElements();
+  if (el.size() > 0) row.sB = el.fibreI[0] == 1 ? el.sI[0] : el.sJ[0];
   row.iterations = r.iterations;
   return row;
 }
@@ -87,6 +91,17 @@ TEST_CASE("two beams, alternate sliding (paper 5.1): stick, slip at mu R_N, cycl
       CHECK(direction * r.horizontal > 0);
       CHECK(std::abs(r.horizontal) == doctest::Approx(mu * r.vertical).epsilon(0.05));
     }
+  }
+  // The contact crosses B's element boundary at s = 1.6 mm in every leg (elements of 0.4 mm;
+  // B's material under A is at s = 2 - d when B has moved by d).
+  for (int leg = 0; leg < 5; ++leg) {
+    double lo = 1e9, hi = -1e9;
+    for (int i = 0; i < perLeg; ++i) {
+      lo = std::min(lo, rows[leg * perLeg + i].sB);
+      hi = std::max(hi, rows[leg * perLeg + i].sB);
+    }
+    CHECK(lo < 1.6);
+    CHECK(hi > 1.6);
   }
   // Cycle 2 (legs 4-5) against cycle 1 (legs 2-3), increment by increment.
   for (int i = perLeg; i < 3 * perLeg; ++i)
