@@ -1,6 +1,8 @@
 // Fibre assemblies for the contact detection tests and benches: seeded random mats, the
 // paper's plain-weave fabric (section 5.2) and twisted yarn (section 5.3). Header-only; every
 // fibre is built by engine/fibre_builder.h (material index 0: detection needs no material).
+// Names are built with append, not "m" + std::to_string(...): GCC 12 warns falsely
+// (-Wrestrict) on the latter once inlined.
 #pragma once
 
 #include "engine/fibre_builder.h"
@@ -54,7 +56,8 @@ inline FibreStore randomMat(int fibres, int elements, double length, double R, d
       p += length / segments * dk;
       pts.push_back(p);
     }
-    add(fs, polylineFibre("m" + std::to_string(f), R, elements, mixedOrders && f % 2 ? 1 : 2, pts));
+    add(fs, polylineFibre(std::string("m").append(std::to_string(f)), R, elements,
+                          mixedOrders && f % 2 ? 1 : 2, pts));
   }
   return fs;
 }
@@ -119,8 +122,7 @@ inline FibreStore twistedYarn(const YarnDef& y = {}) {
     const int n = ring == 0 ? 1 : int(std::floor(2 * std::numbers::pi * r / d));
     for (int k = 0; k < n && made < y.fibres; ++k, ++made) {
       FibreDef f;
-      f.name = "y";  // appended, not "y" + ...: GCC 12 warns falsely (-Wrestrict) on the latter
-      f.name += std::to_string(made);
+      f.name = std::string("y").append(std::to_string(made));
       f.radius = y.radius;
       f.elements = y.elements;
       f.order = 2;
