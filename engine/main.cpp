@@ -131,6 +131,13 @@ void printIncrement(const StepReport& r, const SceneDef& scene) {
                "residual %.3e, %.3f s\n",
                r.step + 1, scene.steps.size(), r.increment, scene.steps[r.step].increments, r.time,
                r.iterations, r.cutbacks, r.residual, r.timings.total);
+  if (!scene.contact.enabled && scene.tools.empty()) return;
+  const ContactReport& c = r.contact;
+  std::fprintf(stderr,
+               "  contact: %d zones, %d + %d tool elements (%d active, %d sliding), max "
+               "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts\n",
+               c.zones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
+               c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts);
 }
 
 // The run's output files, as the scene's output section asks.
