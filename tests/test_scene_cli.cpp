@@ -179,6 +179,31 @@ TEST_CASE("fibra: the helix sample's end reactions balance and follow the pull")
   CHECK(std::abs(end[9]) > std::abs(end[0]));
 }
 
+TEST_CASE("fibra: the roller sample slides at mu R_N, with contact columns and contact files") {
+  TempDir scratch("cli_roller");
+  const std::string out = scratch / "out";
+  REQUIRE(runFibra({"run", sourcePath("samples/roller_drag.json"), "--out", out}, scratch).status ==
+          0);
+  const auto history = readCsv(out + "/history.csv");
+  REQUIRE(history.size() == 11);
+  const std::vector<double> fy = column(history, "tool.roller.fy"),
+                            fz = column(history, "tool.roller.fz"),
+                            tools = column(history, "contact.tool_elements"),
+                            ratio = column(history, "contact.max_penetration_ratio");
+  CHECK(fz.back() == doctest::Approx(-0.02).epsilon(1e-3));     // both end loads on the roller
+  CHECK(fy.back() == doctest::Approx(0.2 * 0.02).epsilon(0.01));  // Coulomb, in slip
+  CHECK(fy.front() < 0.5 * fy.back());                            // stick first
+  for (size_t i = 0; i < tools.size(); ++i) {
+    CHECK(tools[i] > 0);
+    CHECK(ratio[i] <= 1);
+  }
+  CHECK(pvdFrames(out + "/result.pvd").size() == 11);  // part 0, the fibres
+  CHECK(readFile(out + "/result.pvd").find("part=\"1\" file=\"result_contacts_0010.vtu\"") !=
+        std::string::npos);
+  CHECK(fs::exists(fs::path(out) / "result_contacts_0010.vtu"));
+  checkNoPartFiles(out);
+}
+
 TEST_CASE("fibra: a failing increment exits 1 and writes the last converged state") {
   TempDir scratch("cli_fail");
   fs::create_directories(scratch.path());
