@@ -178,7 +178,7 @@ void fibreContactReport(const WorldState& w, ContactReport& r) {
   r.elements = m.size();
   for (Index e = 0; e < m.size(); ++e) {
     r.active += m.normalForce[e] > 0;
-    r.sliding += m.normalForce[e] > 0 && m.gRev[e].norm() >= kSlidingShare * w.contact.gMax;
+    r.sliding += sliding(m.normalForce[e], m.gRev[e], w.contact.gMax);
     r.maxPenetration = std::max(r.maxPenetration, -m.gap[e]);
     r.maxPenetrationRatio = std::max(r.maxPenetrationRatio, -m.gap[e] / w.contact.pMax);
   }

@@ -96,7 +96,7 @@ void toolContactReport(const WorldState& w, ContactReport& r) {
   r.toolElements = c.size();
   for (Index i = 0; i < c.size(); ++i) {
     r.active += c.normalForce[i] > 0;
-    r.sliding += c.normalForce[i] > 0 && c.gRev[i].norm() >= kSlidingShare * w.contact.gMax;
+    r.sliding += sliding(c.normalForce[i], c.gRev[i], w.contact.gMax);
     r.maxPenetration = std::max(r.maxPenetration, -c.gap[i]);
     r.maxPenetrationRatio = std::max(r.maxPenetrationRatio, -c.gap[i] / w.tools.pMax[c.tool[i]]);
   }

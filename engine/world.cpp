@@ -46,7 +46,8 @@ ContactSnapshot World::contactSnapshot() const {
   for (Index e = 0; e < m.size(); ++e)
     add(particlePosition(w.fibres.q, m.sideI[e]), particlePosition(w.fibres.q, m.sideJ[e]),
         m.normal[e], m.gap[e], m.normalForce[e], m.force[e] - m.normalForce[e] * m.normal[e],
-        m.gRev[e].norm() >= kSlidingShare * w.contact.gMax, false, w.elements.fibreI[e], w.elements.fibreJ[e]);
+        sliding(m.normalForce[e], m.gRev[e], w.contact.gMax), false, w.elements.fibreI[e],
+        w.elements.fibreJ[e]);
   const ToolContactStore& t = w.toolContacts;
   for (Index i = 0; i < t.size(); ++i) {
     const Vec3 x = particlePosition(
@@ -55,7 +56,8 @@ ContactSnapshot World::contactSnapshot() const {
     const Vec3 friction = mu > 0 ? Vec3(-mu * t.normalForce[i] / w.contact.gMax * t.gRev[i])
                                  : Vec3::Zero();
     add(x, x - t.gap[i] * t.normal[i], t.normal[i], t.gap[i], t.normalForce[i], friction,
-        t.gRev[i].norm() >= kSlidingShare * w.contact.gMax, true, w.fibres.elementFibre[t.element[i]], t.tool[i]);
+        sliding(t.normalForce[i], t.gRev[i], w.contact.gMax), true,
+        w.fibres.elementFibre[t.element[i]], t.tool[i]);
   }
   return c;
 }

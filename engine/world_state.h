@@ -27,6 +27,9 @@ namespace fibra {
 // the Coulomb limit mu R_N (a re-detected element starts a little inside the limit: its
 // reversible slip is interpolated from the recorded history).
 inline constexpr double kSlidingShare = 0.99;
+inline bool sliding(double normalForce, const Vec3& gRev, double gMax) {
+  return normalForce > 0 && gRev.norm() >= kSlidingShare * gMax;
+}
 
 // Contact parameters resolved from the scene (defaults derived from the radii).
 struct ContactSettings {

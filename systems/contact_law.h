@@ -41,8 +41,7 @@ struct ContactLawResult {
   double gap = 0;               // g, mm
   double normalForce = 0;       // R_N >= 0, N
   Vec3 gRev = Vec3::Zero();     // reversible slip now, mm
-  bool slip = false;            // at the Coulomb limit: |trial| >= (1 - 1e-6) g_max (a state
-                                // that has just been recorded in slip has |trial| = g_max)
+  bool slip = false;            // |trial| > g_max
   Vec3 force = Vec3::Zero();    // f on particle I (J gets -f), N
   Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  // -df/dd, N/mm
 };
@@ -76,8 +75,8 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
     const double t = trial.norm();
     Eigen::Matrix3d dgRev = P;
     out.gRev = trial;
-    out.slip = t >= (1 - 1e-6) * p.gMax;
     if (t > p.gMax) {
+      out.slip = true;
       const Vec3 u = trial / t;
       out.gRev = p.gMax * u;
       dgRev = p.gMax / t * (P - u * u.transpose());

@@ -49,12 +49,12 @@ struct LinearSolver::Impl {
 };
 
 LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
+LinearSolver::~LinearSolver() = default;
 
 void LinearSolver::setLuSolver(LuSolver lu) {
   if (impl_->luKind != lu) impl_->luRevision = -1;
   impl_->luKind = lu;
 }
-LinearSolver::~LinearSolver() = default;
 
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   Impl& m = *impl_;
