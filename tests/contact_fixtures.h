@@ -3,6 +3,9 @@
 
 #include "bench/contact_assemblies.h"
 #include "components/contact.h"
+#include "components/contact_cache.h"
+#include "systems/contact_detection.h"
+#include "systems/contact_params.h"
 
 #include <Eigen/Geometry>
 
@@ -138,6 +141,24 @@ inline bool sameBits(const ContactElementStore& a, const ContactElementStore& b)
          sameBits(a.xiJ2, b.xiJ2) && sameBits(a.normal, b.normal) && sameBits(a.gap, b.gap) &&
          sameBits(a.theta, b.theta) && sameBits(a.crossWeight, b.crossWeight) &&
          sameBits(a.fallback, b.fallback);
+}
+
+// The stores one detection call fills, and its report.
+struct Detected {
+  ContactCache cache;
+  ZoneStore zones;
+  ContactElementStore el;
+  ContactDetectionReport report;
+};
+
+inline void detect(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
+                   Detected& d) {
+  d.report = detectContacts(fs, q, p, d.cache, d.zones, d.el);
+}
+
+// Detection parameters with every default derived from the fibres.
+inline ContactParams defaults(const FibreStore& fs) {
+  return resolveContactParams(fs, ContactDef{});
 }
 
 }  // namespace fibra::fixtures

@@ -14,17 +14,9 @@ using namespace fibra;
 
 namespace {
 
-struct Detected {
-  ContactCache cache;
-  ZoneStore zones;
-  ContactElementStore el;
-};
-
-void detect(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p, Detected& d) {
-  detectContacts(fs, q, p, d.cache, d.zones, d.el);
-}
-
-ContactParams defaults(const FibreStore& fs) { return resolveContactParams(fs, ContactDef{}); }
+using fixtures::Detected;
+using fixtures::defaults;
+using fixtures::detect;
 
 bool finite(const ContactElementStore& el) {
   for (Index e = 0; e < el.size(); ++e)

@@ -78,7 +78,7 @@ Coverage compareWithReference(const FibreStore& fs, const Eigen::VectorXd& q,
   return cov;
 }
 
-ContactParams defaults(const FibreStore& fs) { return resolveContactParams(fs, ContactDef{}); }
+using fixtures::defaults;
 
 }  // namespace
 

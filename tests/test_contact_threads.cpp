@@ -15,12 +15,8 @@ using namespace fibra;
 
 namespace {
 
-struct Detected {
-  ContactCache cache;
-  ZoneStore zones;
-  ContactElementStore el;
-  ContactDetectionReport report;
-};
+using fixtures::Detected;
+using fixtures::defaults;
 
 void detectIn(tbb::task_arena& arena, const FibreStore& fs, const Eigen::VectorXd& q,
               const ContactParams& p, Detected& d) {
@@ -32,8 +28,6 @@ void detectIn(int threads, const FibreStore& fs, const Eigen::VectorXd& q, const
   tbb::task_arena arena(threads);
   detectIn(arena, fs, q, p, d);
 }
-
-ContactParams defaults(const FibreStore& fs) { return resolveContactParams(fs, ContactDef{}); }
 
 // Detection with 1 thread, then several times with 2 (fresh caches): every store bitwise equal.
 // The 2-thread arena is kept across the repeats, so that its worker has joined it and takes
