@@ -167,13 +167,26 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
 }
 
 ContactCheckpoint contactCheckpoint(const WorldState& w) {
-  return {w.history, w.tools.penalty, w.zonePenalty};
+  return {w.history,      w.tools.penalty,   w.tools.reaction, w.zonePenalty,
+          w.zones,        w.cache.zones.previous, w.cache.zones.nextId, w.elements,
+          w.mechanics,    w.toolContacts,    w.system.r,       w.system.fext};
 }
 
 void restoreContact(WorldState& w, const ContactCheckpoint& c) {
   w.history = c.history;
   w.tools.penalty = c.toolPenalty;
+  w.tools.reaction = c.toolReaction;
   w.zonePenalty = c.zonePenalty;
+  w.zones = c.zones;
+  w.cache.zones.previous = c.previousZones;
+  w.cache.zones.nextId = c.nextZoneId;
+  w.elements = c.elements;
+  w.mechanics = c.mechanics;
+  w.toolContacts = c.toolContacts;
+  w.system.r = c.r;
+  w.system.fext = c.fext;
+  // The failed attempt may have changed the tangent's pattern: bind the restored elements to it.
+  if (w.contact.fibres) registerFibreCliques(w);
 }
 
 }  // namespace fibra

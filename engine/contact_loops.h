@@ -30,12 +30,23 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
                                    const NewtonCallbacks& callbacks, StepTimings& timings,
                                    ContactReport& report);
 
-// What an increment changes besides q: friction history and penalties, saved at a converged
-// state and restored when an attempt fails.
+// What an increment changes besides q: the whole contact state of a converged state (zones
+// with their identities and penalties, fibre-fibre and fibre-tool contact elements with their
+// friction references and last forces, the friction history, the tool penalties and
+// reactions) and the residual assembled there. Saved at a converged state and restored, as it
+// was, when an attempt fails or is cancelled, so that the world shows exactly that state.
 struct ContactCheckpoint {
   FrictionHistoryStore history;
   std::vector<double> toolPenalty;
+  std::vector<Vec3> toolReaction;
   std::map<std::uint64_t, double> zonePenalty;
+  ZoneStore zones;
+  ZoneStore previousZones;        // the zone identity's previous call
+  std::uint64_t nextZoneId = 1;
+  ContactElementStore elements;
+  ContactMechanicsStore mechanics;
+  ToolContactStore toolContacts;
+  Eigen::VectorXd r, fext;
 };
 ContactCheckpoint contactCheckpoint(const WorldState& w);
 void restoreContact(WorldState& w, const ContactCheckpoint& c);

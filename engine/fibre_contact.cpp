@@ -52,9 +52,11 @@ void bindParticles(WorldState& w) {
   }
 }
 
+}  // namespace
+
 // Registers the element pairs as cliques; rebuilds the pattern when one is new, or when more
 // than half of the contact cliques went unused.
-void registerCliques(WorldState& w) {
+void registerFibreCliques(WorldState& w) {
   ContactMechanicsStore& m = w.mechanics;
   std::map<std::pair<Index, Index>, Index>& of = w.contactClique;
   const auto pairOf = [&](Index e) { return std::make_pair(m.sideI[e].element, m.sideJ[e].element); };
@@ -88,8 +90,6 @@ void registerCliques(WorldState& w) {
   colourContactCliques(m, Index(of.size()));
 }
 
-}  // namespace
-
 void buildFibreContact(WorldState& w) {
   if (!w.scene.contact.enabled) return;
   w.detection = resolveContactParams(w.fibres, w.scene.contact);
@@ -101,7 +101,7 @@ void detectFibreContacts(WorldState& w) {
   detectContacts(w.fibres, w.fibres.q, w.detection, w.cache, w.zones, w.elements, w.def.trace);
   carryPenalties(w, previousIds);
   bindParticles(w);
-  registerCliques(w);
+  registerFibreCliques(w);
 }
 
 void rebaseFibreContacts(WorldState& w) {

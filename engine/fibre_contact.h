@@ -23,6 +23,7 @@ namespace fibra {
 void buildFibreContact(WorldState& w);
 void detectFibreContacts(WorldState& w);
 void rebaseFibreContacts(WorldState& w);
+void registerFibreCliques(WorldState& w);  // binds the elements to the tangent's pattern
 double updateFibreNormals(WorldState& w);         // largest turn of a normal, rad
 double adaptZonePenalties(WorldState& w);         // largest relative change of a penalty
 void fibreHistoryEntries(const WorldState& w, std::vector<HistoryEntry>& out);

@@ -83,7 +83,8 @@ StepReport advance(WorldState& w) {
   rep.step = w.step;
   rep.increment = w.increment + 1;
 
-  // The world always holds the last converged (sub-)state: q, its time, its contact state.
+  // The world always holds the last converged (sub-)state: q, its time, its contact state and
+  // the residual assembled there.
   const Eigen::VectorXd qStart = w.fibres.q;
   const double timeStart = w.time;
   Eigen::VectorXd qGood = qStart;
@@ -108,7 +109,6 @@ StepReport advance(WorldState& w) {
       w.fibres.q = qStart;
       w.time = timeStart;
       restoreContact(w, contactStart);
-      assembleResidual(w, w.time);
       rep.status = cancelled ? StepStatus::Cancelled : StepStatus::Failed;
       rep.message = cancelled ? "cancelled" : "increment to t = " + std::to_string(t1) +
                     " failed after " + std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message;

@@ -1,0 +1,115 @@
+// The increment checkpoint: after a failed or cancelled increment the world is at its last
+// converged state — not only the positions, but the residual, the reactions, the tool reactions
+// and every contact element (fibre-fibre and fibre-tool) with its forces, bitwise.
+#include "contact_scenes.h"
+
+#include <doctest/doctest.h>
+
+using namespace fibra;
+using namespace fibra::test;
+
+namespace {
+
+// Crossing beams pressed together with friction, A resting on a plane tool with friction; step
+// 1 presses (2 increments) and converges; step 2 slides B's ends sideways by 0.3 mm in one
+// increment with one Newton iteration and no cutback allowed: it cannot converge.
+SceneDef slidingCrossing() {
+  SceneDef s = crossingBeams(0.01, 1e-4);
+  s.contact.friction = 0.2;
+  s.contact.maxReversibleSlip = 5e-4;
+  ToolDef floor;
+  floor.name = "floor";
+  floor.point = Vec3(0, 0, -0.1);
+  floor.friction = 0.3;
+  s.tools.push_back(floor);
+  s.steps[0].increments = 2;
+  for (BcDef& b : s.bcs)
+    if (b.group == "B.start" || b.group == "B.end") {
+      b.displacement = Vec3(0.3, 0, 0);
+      b.displacementTable = {{0, 1, 2}, {0, 0, 1}};
+    }
+  StepDef slide;
+  slide.endTime = 2;
+  slide.maxIterations = 1;
+  slide.maxCutbacks = 0;
+  s.steps.push_back(slide);
+  return s;
+}
+
+// Everything a user reads of a converged state.
+struct Observed {
+  Eigen::VectorXd q, residual;
+  std::vector<Reaction> reactions;
+  Vec3 toolReaction;
+  ContactSnapshot contacts;
+  double time;
+};
+
+Observed observe(const World& w) {
+  Observed o{w.fibres().q, w.residual(), {}, w.toolReaction(0), w.contactSnapshot(), w.time()};
+  for (Index b = 0; b < Index(w.constraints().def.size()); ++b) o.reactions.push_back(w.reaction(b));
+  return o;
+}
+
+void checkSame(const Observed& a, const Observed& b) {
+  CHECK(a.time == b.time);
+  CHECK(a.q.cwiseNotEqual(b.q).count() == 0);
+  CHECK(a.residual.cwiseNotEqual(b.residual).count() == 0);
+  REQUIRE(a.reactions.size() == b.reactions.size());
+  for (size_t i = 0; i < a.reactions.size(); ++i) {
+    CHECK(a.reactions[i].force == b.reactions[i].force);
+    CHECK(a.reactions[i].moment == b.reactions[i].moment);
+  }
+  CHECK(a.toolReaction == b.toolReaction);
+  const ContactSnapshot &c = a.contacts, &d = b.contacts;
+  CHECK(c.size() == d.size());
+  CHECK(c.particleI == d.particleI);
+  CHECK(c.particleJ == d.particleJ);
+  CHECK(c.normal == d.normal);
+  CHECK(c.gap == d.gap);
+  CHECK(c.normalForce == d.normalForce);
+  CHECK(c.friction == d.friction);
+  CHECK(c.slip == d.slip);
+  CHECK(c.tool == d.tool);
+  CHECK(c.fibreI == d.fibreI);
+  CHECK(c.fibreJ == d.fibreJ);
+}
+
+// Solves step 1 and returns what it converged to.
+Observed firstStep(World& w) {
+  while (w.currentStep() == 0) REQUIRE(w.step().status == StepStatus::Converged);
+  const Observed o = observe(w);
+  REQUIRE(o.contacts.size() > 0);
+  int tool = 0;
+  for (auto t : o.contacts.tool) tool += t;
+  REQUIRE(tool > 0);
+  REQUIRE(o.toolReaction.norm() > 0);
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a failed increment leaves residual, reactions and contact forces at the last converged state") {
+  World w(slidingCrossing());
+  const Observed converged = firstStep(w);
+  const StepReport r = w.step();
+  REQUIRE(r.status == StepStatus::Failed);
+  checkSame(observe(w), converged);
+  // And again: a second failed attempt from the restored state fails the same way.
+  CHECK(w.step().status == StepStatus::Failed);
+  checkSame(observe(w), converged);
+}
+
+TEST_CASE("a cancelled increment leaves residual, reactions and contact forces at the last converged state") {
+  SceneDef s = slidingCrossing();
+  s.steps[1].maxIterations = 30;
+  int iterationsOfStep2 = 0;
+  WorldDef def;
+  def.progress = [&](const Progress& p) { iterationsOfStep2 += p.step == 1; };
+  def.cancel = [&] { return iterationsOfStep2 >= 2; };
+  World w(s, def);
+  const Observed converged = firstStep(w);
+  REQUIRE(w.step().status == StepStatus::Cancelled);
+  CHECK(iterationsOfStep2 >= 2);
+  checkSame(observe(w), converged);
+}
