@@ -7,6 +7,7 @@
 //   build/bench_contact_mechanics [--part all|solvers|pmax|loops|bundle] [--threads N]
 //                                 [--rings 1..3]
 #include "bench/bench_util.h"
+#include "bench/contact_scenes.h"
 #include "engine/scene_loader.h"
 #include "engine/world.h"
 
@@ -62,59 +63,7 @@ SceneDef twoBeams() { return loadScene(FIBRA_SOURCE_DIR "/samples/two_beams_slid
 // Horizontal force of B's end holds, N.
 double horizontal(const World& w) { return (w.reaction(2).force + w.reaction(3).force).y(); }
 
-// --- hexagonal bundles: 1 + 3 rings (rings + 1) fibres, touching, along x, pressed in z; ends
-// held axially, the central fibre's also sideways ---
-
-SceneDef bundle(int rings, int elements, double squeeze, double pMax, double mu) {
-  const double L = 4, R = 0.1;
-  SceneDef s;
-  s.materials.push_back({"m", 4000, 0.3, 1, 1});
-  std::vector<Vec3> centres{Vec3::Zero()};
-  for (int ring = 1; ring <= rings; ++ring)
-    for (int side = 0; side < 6; ++side)
-      for (int k = 0; k < ring; ++k) {
-        const double a = side * std::numbers::pi / 3, b = a + 2 * std::numbers::pi / 3;
-        const Vec3 corner(0, std::cos(a), std::sin(a)), step(0, std::cos(b), std::sin(b));
-        centres.push_back(2 * R * (ring * corner + k * step));
-      }
-  double top = 0;
-  for (size_t i = 0; i < centres.size(); ++i) {
-    FibreDef f;
-    f.name = "f" + std::to_string(i);
-    f.material = "m";
-    f.radius = R;
-    f.elements = elements;
-    f.geometry.points = {centres[i] - Vec3(L / 2, 0, 0), centres[i] + Vec3(L / 2, 0, 0)};
-    f.geometry.director = Vec3::UnitZ();
-    s.fibres.push_back(f);
-    for (const char* end : {".start", ".end"}) {
-      BcDef b;
-      b.kind = BcKind::Fix;
-      b.group = f.name + end;
-      b.dofs[X] = true;
-      b.dofs[Y] = true;
-      s.bcs.push_back(b);
-    }
-    top = std::max(top, centres[i].z());
-  }
-  for (int side : {-1, 1}) {
-    ToolDef t;
-    t.name = side < 0 ? "bottom" : "top";
-    t.point = Vec3(0, 0, side * (top + R));
-    t.direction = Vec3(0, 0, -side);
-    if (side > 0) t.displacement = Vec3(0, 0, -squeeze);
-    t.friction = mu;
-    s.tools.push_back(t);
-  }
-  s.contact.enabled = true;
-  s.contact.friction = mu;
-  s.contact.maxPenetration = pMax;
-  s.stabilisation.stiffness = 1e-4;
-  StepDef st;
-  st.increments = 10;
-  s.steps.push_back(st);
-  return s;
-}
+using scenes::bundle;
 
 double topForce(const World& w) { return w.toolReaction(1).z(); }
 

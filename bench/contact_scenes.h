@@ -1,0 +1,70 @@
+// Contact scenes shared by the benches, built as SceneDefs through the public API.
+//
+// bundle(rings, elements, squeeze, pMax, mu): a hexagonal bundle of 1 + 3 rings (rings + 1)
+// touching fibres (R = 0.1 mm, L = 4 mm, E = 4000 MPa) along x, pressed in z between two plane
+// tools, the top one moving down by `squeeze` mm in 10 increments; ends held axially (x, y),
+// friction mu between fibres and with the tools, p_max in mm, stabilisation 1e-4 N/mm.
+#pragma once
+
+#include "engine/scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace fibra::scenes {
+
+inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, double mu) {
+  const double L = 4, R = 0.1;
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  std::vector<Vec3> centres{Vec3::Zero()};
+  for (int ring = 1; ring <= rings; ++ring)
+    for (int side = 0; side < 6; ++side)
+      for (int k = 0; k < ring; ++k) {
+        const double a = side * std::numbers::pi / 3, b = a + 2 * std::numbers::pi / 3;
+        const Vec3 corner(0, std::cos(a), std::sin(a)), step(0, std::cos(b), std::sin(b));
+        centres.push_back(2 * R * (ring * corner + k * step));
+      }
+  double top = 0;
+  for (size_t i = 0; i < centres.size(); ++i) {
+    FibreDef f;
+    f.name = "f" + std::to_string(i);
+    f.material = "m";
+    f.radius = R;
+    f.elements = elements;
+    f.geometry.points = {centres[i] - Vec3(L / 2, 0, 0), centres[i] + Vec3(L / 2, 0, 0)};
+    f.geometry.director = Vec3::UnitZ();
+    s.fibres.push_back(f);
+    for (const char* end : {".start", ".end"}) {
+      BcDef b;
+      b.kind = BcKind::Fix;
+      b.group = f.name + end;
+      b.dofs[X] = true;
+      b.dofs[Y] = true;
+      s.bcs.push_back(b);
+    }
+    top = std::max(top, centres[i].z());
+  }
+  for (int side : {-1, 1}) {
+    ToolDef t;
+    t.name = side < 0 ? "bottom" : "top";
+    t.point = Vec3(0, 0, side * (top + R));
+    t.direction = Vec3(0, 0, -side);
+    if (side > 0) t.displacement = Vec3(0, 0, -squeeze);
+    t.friction = mu;
+    s.tools.push_back(t);
+  }
+  s.contact.enabled = true;
+  s.contact.friction = mu;
+  s.contact.maxPenetration = pMax;
+  s.stabilisation.stiffness = 1e-4;
+  StepDef st;
+  st.increments = 10;
+  s.steps.push_back(st);
+  return s;
+}
+
+}  // namespace fibra::scenes
