@@ -8,7 +8,7 @@
 //                                 [--rings 1..3]
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 #include "engine/world.h"
 
 #include <cmath>

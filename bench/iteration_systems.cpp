@@ -11,7 +11,7 @@
 // to more than the wall time per iteration. Medians over the repeats.
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 #include "engine/world.h"
 
 #include <cstring>

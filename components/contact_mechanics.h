@@ -5,7 +5,7 @@
 #pragma once
 
 #include "components/fibres.h"
-#include "systems/particle.h"
+#include "components/particle_weights.h"
 
 #include <cstdint>
 #include <vector>

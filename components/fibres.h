@@ -11,15 +11,12 @@
 // elementFirstNode[e] + 0..order. No logic lives here.
 #pragma once
 
-#include <Eigen/Core>
-#include <cstdint>
+#include "core/types.h"
+
 #include <string>
 #include <vector>
 
 namespace fibra {
-
-using Index = std::int32_t;
-using Vec3 = Eigen::Vector3d;
 
 constexpr int kNodeDofs = 9;  // x0, g1, g2
 

@@ -3,20 +3,34 @@
 #pragma once
 
 #include "components/fibres.h"
-#include "engine/scene.h"
+#include "components/motion.h"
+
+#include <string>
 
 #include <cstdint>
 #include <vector>
 
 namespace fibra {
 
+enum class ToolKind { Plane, Cylinder };
+
 struct ToolStore {
-  // --- per tool ---
-  std::vector<ToolDef> def;     // geometry at t = 0 and motion
+  // --- per tool: geometry at t = 0, motion, contact ---
+  std::vector<std::string> name;
+  std::vector<ToolKind> kind;
+  std::vector<Vec3> point;      // plane: a point of it; cylinder: a point of its axis, mm
+  std::vector<Vec3> direction;  // plane: normal, towards the fibres; cylinder: axis (both
+                                // normalised when used)
+  std::vector<double> radius;   // cylinder radius, mm
+  std::vector<std::uint8_t> inside;  // cylinder: 1 when the fibres are inside it
+  std::vector<PrescribedMotion> motion;  // centre NaN: the tool's point
+  std::vector<double> friction; // mu between the tool and the fibres
   std::vector<double> pMax;     // maximum penetration aimed at, mm
   std::vector<Vec3> reaction;   // force the fibres exert on the tool, N (last assembly)
   // --- per (tool, fibre): the zone of a tool's contacts with one fibre ---
   std::vector<double> penalty;  // k, adapted like a fibre-fibre zone's, N/mm; [tool * fibres + f]
+
+  Index size() const { return Index(kind.size()); }
 };
 
 // One contact element between a fibre particle and a tool (side I: the fibre, side J: the

@@ -98,7 +98,14 @@ void buildContact(WorldState& w) {
   buildFibreContact(w);
 
   for (const ToolDef& t : w.scene.tools) {
-    w.tools.def.push_back(t);
+    w.tools.name.push_back(t.name);
+    w.tools.kind.push_back(t.kind);
+    w.tools.point.push_back(t.point);
+    w.tools.direction.push_back(t.direction);
+    w.tools.radius.push_back(t.radius);
+    w.tools.inside.push_back(t.inside);
+    w.tools.motion.push_back(motionOf(t));
+    w.tools.friction.push_back(t.friction);
     w.tools.pMax.push_back(std::isfinite(t.maxPenetration) ? t.maxPenetration : pMax);
     w.tools.reaction.push_back(Vec3::Zero());
     for (Index f = 0; f < w.fibres.fibres(); ++f) {

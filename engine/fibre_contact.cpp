@@ -1,10 +1,12 @@
 #include "engine/fibre_contact.h"
 
+#include "engine/contact_setup.h"
 #include "systems/contact_assembler.h"
 #include "systems/contact_detection.h"
 #include "systems/contact_normals.h"
 #include "systems/friction_history.h"
 #include "systems/interpolation.h"
+#include "systems/particle.h"
 #include "systems/sparse_pattern.h"
 
 #include <algorithm>

@@ -5,6 +5,10 @@
 #pragma once
 
 #include "components/beam_store.h"
+#include "components/boundary.h"
+#include "components/tools.h"
+#include "core/errors.h"
+#include "core/table.h"
 
 #include <Eigen/Core>
 #include <array>
@@ -14,18 +18,6 @@
 #include <vector>
 
 namespace fibra {
-
-// A scene that cannot be built: `what()` names the field path and what is wrong.
-struct SceneError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// A piecewise-linear function of pseudo-time: value(t) interpolates the points (t_i, v_i),
-// t strictly increasing, and is constant beyond the first and last points.
-struct TableDef {
-  std::vector<double> t;  // pseudo-time
-  std::vector<double> v;  // value (unit of what it scales)
-};
 
 struct MaterialDef {
   std::string name;
@@ -83,11 +75,11 @@ struct BcDef {
   std::string group;
   std::array<bool, 9> dofs{};            // Fix only
   Vec3 displacement = Vec3::Zero();      // mm, scaled by displacementTable
-  TableDef displacementTable{{0.0, 1.0}, {0.0, 1.0}};
+  Table displacementTable{{0.0, 1.0}, {0.0, 1.0}};
   bool rotates = false;
   Vec3 axis = Vec3::UnitZ();             // rotation axis (normalised when used)
   Vec3 centre = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // default: node's X0
-  TableDef angle;                        // rad
+  Table angle;                        // rad
 };
 
 // Dead loads. Force: F (N) on each node of the group, adding -F.x0 to the energy. Moment: M
@@ -95,13 +87,11 @@ struct BcDef {
 // of the section about that axis measured on the directors' projections (conservative,
 // symmetric). LineForce: w (N/mm) per unit reference length on every element whose nodes all
 // belong to the group, distributed consistently (f_a = w int N_a ds).
-enum class LoadKind { Force, Moment, LineForce };
-
 struct LoadDef {
   LoadKind kind = LoadKind::Force;
   std::string group;
   Vec3 vector = Vec3::Zero();  // N or N mm per node, or N/mm along the fibre; scaled by table
-  TableDef table{{0.0, 1.0}, {0.0, 1.0}};
+  Table table{{0.0, 1.0}, {0.0, 1.0}};
 };
 
 struct StepDef {
@@ -158,8 +148,6 @@ struct ContactDef {
 
 // A rigid tool whose surface touches the fibres through the same contact-friction laws. Its
 // motion is rigid: x -> c + R(t)(x - c) + d(t), as for held DOFs.
-enum class ToolKind { Plane, Cylinder };
-
 struct ToolDef {
   std::string name;
   ToolKind kind = ToolKind::Plane;
@@ -168,11 +156,11 @@ struct ToolDef {
   double radius = 0;                // cylinder radius, mm
   bool inside = false;              // cylinder: the fibres are inside it
   Vec3 displacement = Vec3::Zero();  // mm, scaled by displacementTable
-  TableDef displacementTable{{0.0, 1.0}, {0.0, 1.0}};
+  Table displacementTable{{0.0, 1.0}, {0.0, 1.0}};
   bool rotates = false;
   Vec3 axis = Vec3::UnitZ();        // rotation axis
   Vec3 centre = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());  // default: point
-  TableDef angle;                   // rad
+  Table angle;                   // rad
   double friction = 0;              // mu between the tool and the fibres
   double maxPenetration = std::numeric_limits<double>::quiet_NaN();  // default: the contact's
 };
@@ -199,8 +187,5 @@ struct SceneDef {
   StabilisationDef stabilisation;
   OutputDef output;
 };
-
-// value of a table at pseudo-time t (constant beyond its ends; 0 for an empty table).
-double tableValue(const TableDef& table, double t);
 
 }  // namespace fibra

@@ -81,6 +81,18 @@ void buildGroups(WorldState& w) {
   }
 }
 
+}  // namespace
+
+PrescribedMotion motionOf(const BcDef& d) {
+  return {d.displacement, d.displacementTable, d.rotates, d.axis, d.centre, d.angle};
+}
+
+PrescribedMotion motionOf(const ToolDef& d) {
+  return {d.displacement, d.displacementTable, d.rotates, d.axis, d.centre, d.angle};
+}
+
+namespace {
+
 Index groupIndex(const GroupStore& g, const std::string& name, const std::string& path) {
   for (Index i = 0; i < g.size(); ++i)
     if (g.name[i] == name) return i;
@@ -94,7 +106,7 @@ void buildConstraints(WorldState& w) {
     const BcDef& def = w.scene.bcs[b];
     const std::string path = at("boundary_conditions", b);
     const Index g = groupIndex(w.groups, def.group, path);
-    cs.def.push_back(def);
+    cs.motion.push_back(motionOf(def));
     cs.group.push_back(g);
     for (Index k = w.groups.first[g]; k < w.groups.first[g] + w.groups.count[g]; ++k)
       for (int c = 0; c < kNodeDofs; ++c) {
@@ -118,7 +130,10 @@ void buildLoads(WorldState& w) {
   ls.elementFirst.assign(1, 0);
   for (size_t l = 0; l < w.scene.loads.size(); ++l) {
     const Index g = groupIndex(w.groups, w.scene.loads[l].group, at("loads", l));
-    ls.def.push_back(w.scene.loads[l]);
+    const LoadDef& def = w.scene.loads[l];
+    ls.kind.push_back(def.kind);
+    ls.vector.push_back(def.vector);
+    ls.table.push_back(def.table);
     ls.group.push_back(g);
     if (w.scene.loads[l].kind == LoadKind::LineForce) {
       std::vector<bool> in(w.fibres.nodes(), false);

@@ -13,7 +13,7 @@
 // is identified by its address. Each system runs inside a Span named after it.
 #pragma once
 
-#include "engine/trace.h"
+#include "core/trace.h"
 
 #include <functional>
 #include <memory>

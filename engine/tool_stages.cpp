@@ -27,7 +27,7 @@ void rebaseToolContacts(WorldState& w, double t) {
   ToolContactStore& c = w.toolContacts;
   for (Index i = 0; i < c.size(); ++i) {
     const Index e = c.element[i], f = w.fibres.elementFibre[e];
-    c.d0[i] = particlePosition(w.fibres.q, weightsOf(w, i)) - toolMotion(w.tools.def[c.tool[i]], t)(c.toolPoint[i]);
+    c.d0[i] = particlePosition(w.fibres.q, weightsOf(w, i)) - toolMotion(w.tools, c.tool[i], t)(c.toolPoint[i]);
     const Vec3 h = lookupHistory(w.history, f, -1 - c.tool[i], arcLength(w.fibres, e, c.z[i]),
                                  elementLength(w.fibres, f));
     c.gRev0[i] = projectOnPlane(h, c.normal[i]);

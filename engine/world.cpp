@@ -52,7 +52,7 @@ ContactSnapshot World::contactSnapshot() const {
   for (Index i = 0; i < t.size(); ++i) {
     const Vec3 x = particlePosition(
         w.fibres.q, particleWeights(w.fibres, t.element[i], t.z[i], t.xi1[i], t.xi2[i]));
-    const double mu = w.tools.def[t.tool[i]].friction;
+    const double mu = w.tools.friction[t.tool[i]];
     const Vec3 friction = mu > 0 ? Vec3(-mu * t.normalForce[i] / w.contact.gMax * t.gRev[i])
                                  : Vec3::Zero();
     add(x, x - t.gap[i] * t.normal[i], t.normal[i], t.gap[i], t.normalForce[i], friction,

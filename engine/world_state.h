@@ -96,6 +96,10 @@ struct WorldState {
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }
 
+// The motion of a boundary condition's held DOFs, of a tool.
+PrescribedMotion motionOf(const BcDef& def);
+PrescribedMotion motionOf(const ToolDef& def);
+
 // Builds every store from a scene (throws SceneError on unresolved names or bad geometry).
 void buildWorld(WorldState& w);
 

@@ -1,6 +1,7 @@
 #include "systems/boundary.h"
 
 #include "systems/interpolation.h"
+#include "systems/motion.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -16,11 +17,6 @@ void addEntry(LinearSystem& ls, Index I, Index J, double v) {
   const int* op = ls.K.outerIndexPtr();
   const int* it = std::lower_bound(ip + op[J], ip + op[J + 1], I);
   if (it != ip + op[J + 1] && *it == I) ls.K.valuePtr()[it - ip] += v;
-}
-
-Eigen::Matrix3d rotationOf(const BcDef& bc, double time) {
-  if (!bc.rotates) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(tableValue(bc.angle, time), bc.axis.normalized()).toRotationMatrix();
 }
 
 // Torque |M| about the fixed axis e on node n: Pi = -|M| phi, phi = atan2(S, C) with
@@ -58,7 +54,7 @@ void addMoment(const FibreStore& fs, Index n, const Vec3& M, const Eigen::Vector
 }
 
 // Consistent nodal forces of a line load w (N/mm): f_a = w (h/2) int_{-1}^{1} N_a dz.
-void addLineForce(const FibreStore& fs, const LoadStore& loads, size_t l, const Vec3& w,
+void addLineForce(const FibreStore& fs, const LoadStore& loads, Index l, const Vec3& w,
                   LinearSystem& ls) {
   static constexpr double kWeights[2][3] = {{1, 1, 0}, {1.0 / 3, 4.0 / 3, 1.0 / 3}};
   for (Index k = loads.elementFirst[l]; k < loads.elementFirst[l + 1]; ++k) {
@@ -78,18 +74,11 @@ void addLineForce(const FibreStore& fs, const LoadStore& loads, size_t l, const 
 void applyConstraints(const FibreStore& fs, const ConstraintStore& cs, const GroupStore& groups,
                       double time, Eigen::VectorXd& q) {
   for (size_t k = 0; k < cs.dof.size(); ++k) {
-    const BcDef& bc = cs.def[cs.owner[k]];
     const Index node = cs.dof[k] / kNodeDofs, comp = cs.dof[k] % kNodeDofs;
-    const Eigen::Matrix3d R = rotationOf(bc, time);
     const int block = comp / 3;
     const Vec3 ref = fs.qRef.segment<3>(kNodeDofs * node + 3 * block);
-    Vec3 target;
-    if (block == 0) {
-      const Vec3 c = bc.centre.allFinite() ? bc.centre : ref;
-      target = c + R * (ref - c) + bc.displacement * tableValue(bc.displacementTable, time);
-    } else {
-      target = R * ref;
-    }
+    const RigidMotion m = motionAt(cs.motion[cs.owner[k]], ref, time);
+    const Vec3 target = block == 0 ? m(ref) : Vec3(m.R * ref);
     q(cs.dof[k]) = target(comp % 3);
   }
 }
@@ -97,17 +86,16 @@ void applyConstraints(const FibreStore& fs, const ConstraintStore& cs, const Gro
 void assembleLoads(const FibreStore& fs, const LoadStore& loads, const GroupStore& groups,
                    const Eigen::VectorXd& q, double time, bool withTangent, LinearSystem& ls) {
   ls.fext.setZero(q.size());
-  for (size_t l = 0; l < loads.def.size(); ++l) {
-    const LoadDef& def = loads.def[l];
-    const Vec3 v = def.vector * tableValue(def.table, time);
+  for (Index l = 0; l < loads.size(); ++l) {
+    const Vec3 v = loads.vector[l] * tableValue(loads.table[l], time);
     const Index g = loads.group[l];
-    if (def.kind == LoadKind::LineForce) {
+    if (loads.kind[l] == LoadKind::LineForce) {
       addLineForce(fs, loads, l, v, ls);
       continue;
     }
     for (Index k = groups.first[g]; k < groups.first[g] + groups.count[g]; ++k) {
       const Index n = groups.members[k];
-      if (def.kind == LoadKind::Force) {
+      if (loads.kind[l] == LoadKind::Force) {
         ls.r.segment<3>(kNodeDofs * n) -= v;
         ls.fext.segment<3>(kNodeDofs * n) += v;
       } else {

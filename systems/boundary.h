@@ -20,7 +20,7 @@
 
 #include "components/boundary.h"
 #include "components/linear_system.h"
-#include "engine/world.h"
+#include "core/report.h"
 
 namespace fibra {
 

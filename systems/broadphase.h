@@ -26,7 +26,7 @@
 #pragma once
 
 #include "components/contact_cache.h"
-#include "engine/trace.h"
+#include "core/trace.h"
 #include "systems/contact_params.h"
 
 namespace fibra {

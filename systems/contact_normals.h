@@ -20,7 +20,7 @@
 #pragma once
 
 #include "components/contact.h"
-#include "engine/trace.h"
+#include "core/trace.h"
 #include "systems/contact_params.h"
 #include "systems/interpolation.h"
 

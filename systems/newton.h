@@ -26,7 +26,7 @@
 #pragma once
 
 #include "components/linear_system.h"
-#include "engine/world.h"
+#include "core/report.h"
 #include "systems/linear_solver.h"
 
 #include <functional>

@@ -6,16 +6,10 @@
 // stiffness to the DOFs. Header-only, used by the contact and tool systems.
 #pragma once
 
+#include "components/particle_weights.h"
 #include "systems/interpolation.h"
 
 namespace fibra {
-
-struct ParticleWeights {
-  Index element = -1;
-  Index firstNode = 0;  // the element's first node
-  int nodes = 0;        // 2 or 3
-  double c[3][3] = {};  // c[a][f]: weight of node a's field f (0 x0, 1 g1, 2 g2)
-};
 
 inline ParticleWeights particleWeights(const FibreStore& fs, Index element, double z, double xi1,
                                        double xi2) {

@@ -18,16 +18,12 @@
 
 #include "components/linear_system.h"
 #include "components/tools.h"
+#include "systems/motion.h"
 
 namespace fibra {
 
-struct RigidMotion {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Vec3 centre = Vec3::Zero(), shift = Vec3::Zero();
-  Vec3 operator()(const Vec3& x) const { return centre + R * (x - centre) + shift; }
-};
-
-RigidMotion toolMotion(const ToolDef& tool, double time);
+// Motion of tool t at time t (its centre defaults to its point).
+RigidMotion toolMotion(const ToolStore& tools, Index tool, double time);
 
 // Closest point of the tool's surface to x at time t, the unit normal there pointing to the
 // fibres' side, and the signed distance of x from the surface along it (mm).
@@ -35,7 +31,8 @@ struct SurfacePoint {
   Vec3 point, normal;
   double distance;
 };
-SurfacePoint closestSurfacePoint(const ToolDef& tool, const RigidMotion& m, const Vec3& x);
+SurfacePoint closestSurfacePoint(const ToolStore& tools, Index tool, const RigidMotion& m,
+                                  const Vec3& x);
 
 struct ToolContactParams {
   double proximity = 0;   // extra distance beyond the fibre radius that makes an element, mm (NaN: default)

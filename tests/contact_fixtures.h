@@ -5,6 +5,7 @@
 #include "components/contact.h"
 #include "components/contact_cache.h"
 #include "systems/contact_detection.h"
+#include "engine/contact_setup.h"
 #include "systems/contact_params.h"
 
 #include <Eigen/Geometry>

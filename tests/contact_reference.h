@@ -8,6 +8,7 @@
 #pragma once
 
 #include "components/contact.h"
+#include "engine/contact_setup.h"
 #include "systems/contact_params.h"
 #include "systems/interpolation.h"
 

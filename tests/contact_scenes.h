@@ -22,7 +22,7 @@ inline FibreDef straightFibre(const std::string& name, const Vec3& a, const Vec3
 }
 
 inline void hold(SceneDef& s, const std::string& group, std::initializer_list<Dof> dofs,
-                 const Vec3& displacement = Vec3::Zero(), const TableDef& table = {{0, 1}, {0, 1}}) {
+                 const Vec3& displacement = Vec3::Zero(), const Table& table = {{0, 1}, {0, 1}}) {
   BcDef b;
   b.kind = BcKind::Fix;
   b.group = group;

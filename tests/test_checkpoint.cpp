@@ -47,7 +47,7 @@ struct Observed {
 
 Observed observe(const World& w) {
   Observed o{w.fibres().q, w.residual(), {}, w.toolReaction(0), w.contactSnapshot(), w.time()};
-  for (Index b = 0; b < Index(w.constraints().def.size()); ++b) o.reactions.push_back(w.reaction(b));
+  for (Index b = 0; b < w.constraints().size(); ++b) o.reactions.push_back(w.reaction(b));
   return o;
 }
 

@@ -1,6 +1,6 @@
 // Scene loader on bad input: every class of error is answered with the file, the field path and
 // what is wrong — the whole message is compared, so a wrong path or a vaguer text fails.
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 #include "scene_test_util.h"
 
 #include <doctest/doctest.h>

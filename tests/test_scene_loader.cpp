@@ -1,8 +1,8 @@
 // Scene loader on good input: the samples load to the SceneDef they describe, every key of the
 // format reaches its Def field (units converted where the file differs), and defaults are the
 // Def structs'.
-#include "engine/scene_loader.h"
-#include "engine/scene_validate.h"
+#include "io/scene_loader.h"
+#include "io/scene_validate.h"
 #include "scene_test_util.h"
 
 #include <doctest/doctest.h>
@@ -17,7 +17,7 @@ namespace {
 
 const double kPi = std::numbers::pi;
 
-bool same(const TableDef& a, const std::vector<double>& t, const std::vector<double>& v) {
+bool same(const Table& a, const std::vector<double>& t, const std::vector<double>& v) {
   return a.t == t && a.v == v;
 }
 

@@ -2,14 +2,14 @@
 // PVD series, the final-state file read back exactly, the history's columns and reactions, and
 // files that are never left half-written.
 #include "engine/fibre_builder.h"
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 #include "engine/world.h"
 #include "contact_scenes.h"
 #include "scene_test_util.h"
-#include "systems/history_writer.h"
-#include "systems/output_file.h"
-#include "systems/state_writer.h"
-#include "systems/vtu_writer.h"
+#include "io/history_writer.h"
+#include "io/output_file.h"
+#include "io/state_writer.h"
+#include "io/vtu_writer.h"
 
 #include <doctest/doctest.h>
 

@@ -4,7 +4,7 @@
 // B's equilibrium, not from the law) has a tangential part mu times its normal part within 2%,
 // the contact crosses an element boundary of B in every leg, and the second cycle repeats the
 // first within 2% of the peak force.
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 #include "engine/world.h"
 
 #include <doctest/doctest.h>

@@ -2,9 +2,9 @@
 // scene file's names (docs/SCENE.md), so a message reads the same for a file and for a SceneDef
 // built in code. Code-only representations are reported in file terms: contact angles in
 // degrees, a tool's direction as its "normal" or "axis".
-#include "engine/scene_validate.h"
+#include "io/scene_validate.h"
 
-#include "engine/json_reader.h"
+#include "io/json_reader.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -374,7 +374,7 @@ void validateOutput(const SceneDef& s, const Names& fibres) {
 
 }  // namespace
 
-void validateTable(const TableDef& table, const std::string& path) {
+void validateTable(const Table& table, const std::string& path) {
   if (table.t.size() != table.v.size())
     fail(path, std::to_string(table.t.size()) + " times but " + std::to_string(table.v.size()) +
                    " values");

@@ -1,6 +1,6 @@
-#include "systems/state_writer.h"
+#include "io/state_writer.h"
 
-#include "systems/output_file.h"
+#include "io/output_file.h"
 
 namespace fibra {
 

@@ -15,11 +15,11 @@
 // SIGINT sets the program's one process-level flag; the World polls it through its cancel
 // callback between Newton iterations and returns the last converged state. A second SIGINT
 // kills the program at once.
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 #include "engine/world.h"
-#include "systems/history_writer.h"
-#include "systems/state_writer.h"
-#include "systems/vtu_writer.h"
+#include "io/history_writer.h"
+#include "io/state_writer.h"
+#include "io/vtu_writer.h"
 
 #include <atomic>
 #include <csignal>

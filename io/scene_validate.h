@@ -13,6 +13,6 @@ void validateScene(const SceneDef& scene);
 
 // One table: at least one point, finite values, times strictly increasing. `path` names it
 // (e.g. "loads[0].table"); a point is named "path[i]".
-void validateTable(const TableDef& table, const std::string& path);
+void validateTable(const Table& table, const std::string& path);
 
 }  // namespace fibra

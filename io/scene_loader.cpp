@@ -1,10 +1,10 @@
 // Scene loader: the top level, materials, fibres, groups, steps and output. Boundary
 // conditions, loads, tables, tools and contact are in scene_loader_motion.cpp.
-#include "engine/scene_loader.h"
+#include "io/scene_loader.h"
 
-#include "engine/json_reader.h"
-#include "engine/scene_sections.h"
-#include "engine/scene_validate.h"
+#include "io/json_reader.h"
+#include "io/scene_sections.h"
+#include "io/scene_validate.h"
 
 #include <filesystem>
 #include <fstream>

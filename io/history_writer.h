@@ -23,7 +23,7 @@
 #pragma once
 
 #include "engine/world.h"
-#include "systems/output_file.h"
+#include "io/output_file.h"
 
 #include <functional>
 #include <memory>

@@ -1,4 +1,4 @@
-#include "engine/trace.h"
+#include "core/trace.h"
 
 #include <tbb/enumerable_thread_specific.h>
 

@@ -1,4 +1,4 @@
-#include "systems/contact_params.h"
+#include "engine/contact_setup.h"
 
 #include <numbers>
 #include <string>

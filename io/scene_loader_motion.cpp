@@ -1,8 +1,8 @@
 // Scene loader: time tables, boundary conditions, loads, rigid tools, contact and
 // stabilisation. Tables are resolved here (SceneDef holds them inline).
-#include "engine/json_reader.h"
-#include "engine/scene_sections.h"
-#include "engine/scene_validate.h"
+#include "io/json_reader.h"
+#include "io/scene_sections.h"
+#include "io/scene_validate.h"
 
 #include <numbers>
 
@@ -11,9 +11,9 @@ namespace {
 
 using namespace json_reader;
 
-TableDef readTablePoints(const Json& j, const std::string& path) {
+Table readTablePoints(const Json& j, const std::string& path) {
   if (!j.is_array()) fail(path, typeMismatch("a table [[t, v], ...] or a table name", j));
-  TableDef table;
+  Table table;
   forEachItem(j, path, [&](const Json& p, const std::string& at) {
     if (!p.is_array() || p.size() != 2) fail(at, typeMismatch("a point [t, v]", p));
     table.t.push_back(asNumber(p[0], at + "[0]"));
@@ -24,7 +24,7 @@ TableDef readTablePoints(const Json& j, const std::string& path) {
 }
 
 // A table given by name (from `tables`) or inline.
-TableDef readTable(const Json& j, const std::string& path, const Tables& tables) {
+Table readTable(const Json& j, const std::string& path, const Tables& tables) {
   if (!j.is_string()) return readTablePoints(j, path);
   const std::string name = j.get<std::string>();
   if (const auto it = tables.find(name); it != tables.end()) return it->second;

@@ -1,10 +1,10 @@
-#include "engine/scene.h"
+#include "core/table.h"
 
 #include <algorithm>
 
 namespace fibra {
 
-double tableValue(const TableDef& table, double t) {
+double tableValue(const Table& table, double t) {
   if (table.t.empty()) return 0;
   if (t <= table.t.front()) return table.v.front();
   if (t >= table.t.back()) return table.v.back();

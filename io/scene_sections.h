@@ -3,7 +3,7 @@
 // and order; validateScene then checks ranges and cross-references on the whole SceneDef.
 #pragma once
 
-#include "engine/json_reader.h"
+#include "io/json_reader.h"
 #include "engine/scene.h"
 
 #include <map>
@@ -12,7 +12,7 @@
 namespace fibra::scene_sections {
 
 using json_reader::Json;
-using Tables = std::map<std::string, TableDef>;
+using Tables = std::map<std::string, Table>;
 
 // scene_loader.cpp
 MaterialDef readMaterial(const Json& j, const std::string& path);

@@ -1,6 +1,6 @@
-#include "systems/vtu_writer.h"
+#include "io/vtu_writer.h"
 
-#include "systems/output_file.h"
+#include "io/output_file.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "systems/output_file.h"
+#include "io/output_file.h"
 
 #include <charconv>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "engine/json_reader.h"
+#include "io/json_reader.h"
 
 #include <algorithm>
 #include <climits>

@@ -1,4 +1,4 @@
-#include "systems/history_writer.h"
+#include "io/history_writer.h"
 
 #include <algorithm>
 #include <map>

@@ -1,0 +1,41 @@
+// Contact detection parameters: the scene's ContactDef resolved against the fibres, every NaN
+// replaced by a default derived from the radii R and element lengths h (docs/CONTACT.md), by
+// engine/contact_setup.h. No logic here.
+//
+//   Delta_prox(I, J) = reach_I + reach_J        reach_f = 1.5 R_f  (given Delta: Delta / 2)
+//       a zone opens where the surface gap is below half the mean diameter; in a hexagonal
+//       packing of equal fibres this keeps the 6 touching neighbours (2R) and drops the next
+//       ring (2 sqrt(3) R = 3.46 R > 3 R).
+//   l_zp(I, J) = min(h_I / 2, R_I + R_J), rounded down to h_I / m (m whole test-point intervals
+//       per element): zone ends are resolved to one contact-element spacing (h / 2), and a
+//       touching perpendicular crossing (zone length 2 sqrt(Delta^2 - (R_I + R_J)^2) =
+//       2.24 (R_I + R_J) on I) holds at least two test points.
+//   theta_parallel = 5 deg, theta_cross = 20 deg: below 5 deg the crossing normal t_I x t_J
+//       amplifies tangent errors more than 11 times; above 20 deg (3 times) it is reliable, while
+//       the centre-to-centre direction deviates from the common normal at the ends of any
+//       crossing zone.
+//   self-contact separation = max(2 Delta_prox(f, f), h_f) = max(6 R_f, h_f): on a straight or
+//       gently bent fibre the closest allowed point stays farther than Delta_prox; at least one
+//       element, so that an element is never tested against itself.
+//   skin = R_min / 2: candidate boxes are reused while no node moved more than R_min / 4.
+#pragma once
+
+#include "core/types.h"
+
+#include <vector>
+
+namespace fibra {
+
+struct ContactParams {
+  // --- per fibre ---
+  std::vector<double> reach;           // half of its share of Delta_prox, mm
+  std::vector<double> selfSeparation;  // min |s' - s| for self-contact (>= h_f), mm
+  // --- global ---
+  double testPointSpacing = 0;  // l_zp, mm; NaN: per-pair default min(h_I / 2, R_I + R_J)
+  double thetaCross = 0;        // rad
+  double thetaParallel = 0;     // rad, <= thetaCross
+  bool selfContact = false;
+  double skin = 0;              // broadphase skin, mm (0: rebuild on any motion)
+};
+
+}  // namespace fibra
