@@ -109,7 +109,8 @@ Measured measure(const FibreStore& fs, const ContactParams& p, int threads, int 
       cache.broadphase.valid = false;  // force a full rebuild, grid included
       trace.clear();
       m.report = detectContacts(fs, fs.q, p, cache, m.zones, m.el, &trace);
-      updateNormalsAndGaps(fs, fs.q, p, m.el, &trace);
+      ContactLoopStats stats;
+      updateNormalsAndGaps(fs, fs.q, p, m.el, stats, &trace);
       runs.push_back(stagesOf(trace));
     }
     m.rebuild = medians(runs);
@@ -142,7 +143,8 @@ Measured measure(const FibreStore& fs, const ContactParams& p, int threads, int 
       Span span(profile, label, "bench");
       cache.broadphase.valid = false;
       detectContacts(fs, fs.q, p, cache, zones, el, profile);
-      updateNormalsAndGaps(fs, fs.q, p, el, profile);
+      ContactLoopStats stats;
+      updateNormalsAndGaps(fs, fs.q, p, el, stats, profile);
     }
   });
   return m;

@@ -39,11 +39,7 @@ SceneDef fibresScene(int n) {
   return s;
 }
 
-void assemble(WorldState& w) {
-  w.solveTime = 1;
-  w.withTangent = true;
-  w.arena->execute([&] { w.iteration.run(nullptr); });
-}
+void assemble(WorldState& w) { runStage(w, w.pipeline.assemble, 1, true); }
 
 // The same tangent rebuilt from triplets (what a scatter into a fixed pattern avoids).
 double tripletRebuild(WorldState& w, int repeats) {

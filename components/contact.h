@@ -1,6 +1,8 @@
 // Contact detection stores (paper section 3): the proximity zones of a detection call and the
-// contact elements generated in them. Flat arrays, no logic; filled by the systems of
-// systems/contact_detection.h, read by the contact mechanics.
+// contact elements generated in them, with what the contact laws need of them (penalty per
+// zone, particle weights and friction reference per element). Flat arrays, no logic; filled by
+// the systems of systems/contact_detection.h, read by the contact laws (the forces live in
+// components/contact_forces.h).
 //
 // Canonical order (identical for every thread count): zones sorted by (fibreI, fibreJ, sI1),
 // elements grouped by zone in zone order, then by k (increasing zeta).
@@ -15,6 +17,7 @@
 #pragma once
 
 #include "components/fibres.h"
+#include "components/particle_weights.h"
 
 #include <cstdint>
 #include <vector>
@@ -35,6 +38,12 @@ struct ZoneStore {
   std::vector<double> intermediateLength;  // L_int, length of the intermediate geometry, mm
   std::vector<Index> firstElement;   // first contact element of the zone (ContactElementStore)
   std::vector<Index> elementCount;   // Nc, contact elements of the zone (>= 1)
+  std::vector<double> penalty;       // k of the zone's elements, N/mm (eq. 13; carried from the
+                                     // `previous` zone, systems/zone_penalty.h)
+  std::vector<double> pMax;          // p_max the zone's penalty aims at, mm
+
+  // --- per store ---
+  std::uint64_t nextId = 1;          // next fresh zone id (ids below it were handed out)
 
   Index size() const { return Index(fibreI.size()); }
 };
@@ -67,6 +76,11 @@ struct ContactElementStore {
   std::vector<double> theta;       // angle between the centreline tangents, rad, in [0, pi/2]
   std::vector<double> crossWeight; // weight of the crossing normal in the blend, in [0, 1]
   std::vector<std::uint8_t> fallback;  // ContactFallback bits
+  // the particles as weights on their elements' DOFs (systems/contact_particles.h)
+  std::vector<ParticleWeights> sideI, sideJ;
+  // friction reference (systems/friction_reference.h): the state the slip is measured from
+  std::vector<Vec3> d0;            // x^I - x^J at the reference state, mm
+  std::vector<Vec3> gRev0;         // reversible slip at that state (normal to N), mm
 
   Index size() const { return Index(zone.size()); }
 };

@@ -1,8 +1,9 @@
 // Contact detection caches: what the detection systems keep between calls (the broadphase's
-// candidate set and skin reference, the previous zones for identity matching) and their reusable
-// scratch buffers. Owned by the caller (the world, a bench, a test), one per assembly; never
-// shared between concurrent detections. Buffers keep their capacity across calls so that a
-// detection in steady state allocates nothing. No logic here.
+// candidate set and skin reference) and their reusable scratch buffers; nothing the results
+// depend on (the previous zones, for identity, are the caller's: components/contact_state.h).
+// Owned by the caller (the world, a bench, a test), one per assembly; never shared between
+// concurrent detections. Buffers keep their capacity across calls so that a detection in steady
+// state allocates nothing. No logic here.
 #pragma once
 
 #include "components/contact.h"
@@ -100,9 +101,7 @@ struct ZoneCache {
   std::vector<std::vector<ZoneRecord>> chunkZones;  // per fibre chunk: zones in canonical order
   tbb::enumerable_thread_specific<ZoneScratch> scratch;
   std::vector<Index> chunkFirst;    // per chunk + 1: first zone
-  ZoneStore previous;               // the zones of the previous call (identity matching)
-  std::uint64_t nextId = 1;         // next fresh zone id
-  std::vector<double> matchScore;   // per zone: overlap with `previous[match]`, mm
+  std::vector<double> matchScore;   // per zone: overlap with its previous match, mm
   std::vector<Index> bestNew;       // per previous zone: the new zone that inherits its id
 };
 
@@ -110,6 +109,8 @@ struct ContactCache {
   CentrelineStore centrelines;
   BroadphaseCache broadphase;
   ZoneCache zones;
+  ZoneStore builtZones;  // the zones of this call before they replace the previous ones
+                         // (systems/contact_detection.h: adoptZones)
 };
 
 }  // namespace fibra

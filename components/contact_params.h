@@ -1,7 +1,8 @@
-// Contact detection parameters: the scene's ContactDef resolved against the fibres, every NaN
-// replaced by a default derived from the radii R and element lengths h (docs/CONTACT.md), by
-// engine/contact_setup.h. No logic here.
+// Contact parameters: the scene's ContactDef resolved against the fibres, every NaN replaced by a
+// default derived from the radii R and element lengths h (docs/CONTACT.md), once, by
+// engine/contact_setup.h; every contact system reads them from here. No logic here.
 //
+// Detection:
 //   Delta_prox(I, J) = reach_I + reach_J        reach_f = 1.5 R_f  (given Delta: Delta / 2)
 //       a zone opens where the surface gap is below half the mean diameter; in a hexagonal
 //       packing of equal fibres this keeps the 6 touching neighbours (2R) and drops the next
@@ -18,6 +19,10 @@
 //       gently bent fibre the closest allowed point stays farther than Delta_prox; at least one
 //       element, so that an element is never tested against itself.
 //   skin = R_min / 2: candidate boxes are reused while no node moved more than R_min / 4.
+// Laws and loops (paper section 4; docs/METHOD.md):
+//   p_max = 0.005 R_min, g_T,max = 0.005 R_min; a new zone's penalty k0 = min(E_I R_I, E_J R_J)
+//   (a tool zone's: E_f R_f); eq. 13 aims the deepest penetration of a zone at 0.9 p_max and
+//   changes k by at most a factor 10 per update.
 #pragma once
 
 #include "core/types.h"
@@ -36,6 +41,32 @@ struct ContactParams {
   double thetaParallel = 0;     // rad, <= thetaCross
   bool selfContact = false;
   double skin = 0;              // broadphase skin, mm (0: rebuild on any motion)
+
+  // --- which contact the scene has ---
+  bool fibres = false;          // fibre-fibre contact is on
+  bool tools = false;           // the scene has tools
+
+  // --- contact law (eqs. 12-16) ---
+  double pMax = 0;              // p_max of fibre-fibre zones, mm
+  double pRegRatio = 0.5;       // p_reg / p_max
+  double mu = 0;                // friction coefficient between fibres (tools: ToolStore)
+  double gMax = 0;              // reversible slip g_T,max, mm
+  bool symmetrised = false;     // friction tangent without its non-symmetric part
+  double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
+                                // systems/tool_detection.h)
+
+  // --- penalty per zone (eq. 13) ---
+  double initialPenalty = 0;    // k of a new zone, N/mm (NaN: min(E_I R_I, E_J R_J))
+  double penaltyChange = 10;    // bound on k_new / k_old (and its inverse) per update
+  double penaltyTarget = 0.9;   // the deepest penetration of a zone is aimed at this x p_max
+
+  // --- nested loops (paper section 4.4) ---
+  int maxDetectionLoops = 3;       // n_A
+  int maxNormalLoops = 3;          // n_B
+  double normalTolerance = 1e-3;   // rad: loop B stops when no normal turns more
+  double particleTolerance = 1e-3; // x R_min: loop A stops when no centreline moved more
+  double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
+  double stepPenetration = 10;     // x p_max: deepest closing of an element in one Newton step
 };
 
 }  // namespace fibra

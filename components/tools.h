@@ -1,13 +1,13 @@
-// Tool stores: rigid tools (planes, cylinders) and their contact elements with the fibres.
-// No logic here; see systems/tool_contact.h.
+// Tool stores: rigid tools (planes, cylinders), the zones of their contacts with each fibre and
+// their contact elements. No logic here; see systems/tool_detection.h and systems/tool_contact.h.
 #pragma once
 
 #include "components/fibres.h"
 #include "components/motion.h"
-
-#include <string>
+#include "components/particle_weights.h"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace fibra {
@@ -26,11 +26,18 @@ struct ToolStore {
   std::vector<PrescribedMotion> motion;  // centre NaN: the tool's point
   std::vector<double> friction; // mu between the tool and the fibres
   std::vector<double> pMax;     // maximum penetration aimed at, mm
-  std::vector<Vec3> reaction;   // force the fibres exert on the tool, N (last assembly)
-  // --- per (tool, fibre): the zone of a tool's contacts with one fibre ---
-  std::vector<double> penalty;  // k, adapted like a fibre-fibre zone's, N/mm; [tool * fibres + f]
 
   Index size() const { return Index(kind.size()); }
+};
+
+// The zone of a tool's contacts with one fibre, for every (tool, fibre): zone tool * fibres + f.
+// Its penalty is adapted like a fibre-fibre zone's (eq. 13, systems/penalty_adapter.h).
+struct ToolZoneStore {
+  // --- per (tool, fibre) ---
+  std::vector<double> penalty;  // k, N/mm
+  std::vector<double> pMax;     // p_max aimed at, mm (the tool's)
+
+  Index size() const { return Index(penalty.size()); }
 };
 
 // One contact element between a fibre particle and a tool (side I: the fibre, side J: the
@@ -38,20 +45,18 @@ struct ToolStore {
 struct ToolContactStore {
   // --- per tool contact element ---
   std::vector<Index> tool;
+  std::vector<Index> zone;          // ToolZoneStore index: tool * fibres + fibre
   std::vector<Index> element;       // fibre element holding the particle
   std::vector<double> z;            // element parameter in [-1, 1]
   std::vector<double> xi1, xi2;     // section coordinates of the particle, mm
+  std::vector<ParticleWeights> side;  // the particle as weights on its element's DOFs
   std::vector<Vec3> normal;         // N, unit, from the tool to the fibre (fixed during Newton)
+  std::vector<double> gap;          // (x - p) . N at detection or the last normal update, mm
   std::vector<Vec3> toolPoint;      // the tool's material point under the particle, in the
-                                    // tool's t = 0 frame, mm: p(t) = M(t) toolPoint, gap = (x - p) . N
-  // friction reference (state of the last converged contact loop)
+                                    // tool's t = 0 frame, mm: p(t) = M(t) toolPoint
+  // friction reference (systems/friction_reference.h)
   std::vector<Vec3> d0;             // x - p at the reference, mm
   std::vector<Vec3> gRev0;          // reversible slip at the reference, mm
-  // results of the last assembly
-  std::vector<double> gap;          // mm
-  std::vector<double> normalForce;  // R_N, N
-  std::vector<Vec3> gRev;           // reversible slip, mm
-  std::vector<std::uint8_t> slip;   // 1 when sliding
 
   Index size() const { return Index(tool.size()); }
 };

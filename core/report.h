@@ -48,6 +48,10 @@ struct ContactReport {
   double maxPenetration = 0;   // over all elements, mm
   double maxPenetrationRatio = 0;  // max over zones of penetration / p_max
   double stabilisation = 0;    // |stabilisation forces| / F_ref at convergence
+  // detection, in the last attempt
+  int detections = 0;          // detection passes (loop A passes of every attempt)
+  int broadphaseRebuilds = 0;  // of them, those that rebuilt the broadphase's candidate set
+  int candidatePairs = 0;      // candidate element pairs of the last detection
 };
 
 struct StepReport {

@@ -56,4 +56,44 @@ ContactParams resolveContactParams(const FibreStore& fs, const ContactDef& def) 
   return p;
 }
 
+ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
+  const ContactDef& def = scene.contact;
+  ContactParams p = def.enabled ? resolveContactParams(fs, def) : ContactParams{};
+  double R = fs.fibres() ? fs.radius[0] : 1;
+  for (double r : fs.radius) R = std::min(R, r);
+  p.fibres = def.enabled;
+  p.tools = !scene.tools.empty();
+  p.pMax = std::isfinite(def.maxPenetration) ? def.maxPenetration : 0.005 * R;
+  p.pRegRatio = def.regularisation;
+  p.mu = def.friction;
+  p.gMax = std::isfinite(def.maxReversibleSlip) ? def.maxReversibleSlip : 0.005 * R;
+  p.symmetrised = def.frictionTangent == FrictionTangent::Symmetrised;
+  p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h
+  p.initialPenalty = def.initialPenalty;
+  p.penaltyChange = def.penaltyChange;
+  p.maxDetectionLoops = def.maxDetectionLoops;
+  p.maxNormalLoops = def.maxNormalLoops;
+  return p;
+}
+
+void buildTools(const SceneDef& scene, const FibreStore& fs, const MaterialStore& materials,
+                const ContactParams& params, ToolStore& tools, ToolZoneStore& zones) {
+  for (const ToolDef& t : scene.tools) {
+    tools.name.push_back(t.name);
+    tools.kind.push_back(t.kind);
+    tools.point.push_back(t.point);
+    tools.direction.push_back(t.direction);
+    tools.radius.push_back(t.radius);
+    tools.inside.push_back(t.inside);
+    tools.motion.push_back({t.displacement, t.displacementTable, t.rotates, t.axis, t.centre, t.angle});
+    tools.friction.push_back(t.friction);
+    tools.pMax.push_back(std::isfinite(t.maxPenetration) ? t.maxPenetration : params.pMax);
+    for (Index f = 0; f < fs.fibres(); ++f) {
+      const double ER = materials.youngModulus[fs.material[f]] * fs.radius[f];
+      zones.penalty.push_back(std::isfinite(params.initialPenalty) ? params.initialPenalty : ER);
+      zones.pMax.push_back(tools.pMax.back());
+    }
+  }
+}
+
 }  // namespace fibra

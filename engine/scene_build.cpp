@@ -1,17 +1,15 @@
 // Scene build: SceneDef -> stores. Resolves names (materials, fibres, groups) into indices,
 // generates the fibres' nodes and reference frames, the held DOFs, the beam reference data, the
-// equation numbering and the tangent pattern, and wires the iteration's task graph.
-#include "engine/contact_loops.h"
+// equation numbering and the tangent pattern, the contact parameters and tools, and the stages
+// of an iteration (engine/pipeline.h).
+#include "engine/contact_setup.h"
 #include "engine/fibre_builder.h"
 #include "engine/world_state.h"
-#include "systems/beam_assembler.h"
 #include "systems/beam_section.h"
-#include "systems/contact_assembler.h"
 #include "systems/boundary.h"
 #include "systems/sparse_pattern.h"
-#include "systems/stabilisation.h"
-#include "systems/tool_contact.h"
 
+#include <algorithm>
 #include <map>
 
 namespace fibra {
@@ -87,10 +85,6 @@ PrescribedMotion motionOf(const BcDef& d) {
   return {d.displacement, d.displacementTable, d.rotates, d.axis, d.centre, d.angle};
 }
 
-PrescribedMotion motionOf(const ToolDef& d) {
-  return {d.displacement, d.displacementTable, d.rotates, d.axis, d.centre, d.angle};
-}
-
 namespace {
 
 Index groupIndex(const GroupStore& g, const std::string& name, const std::string& path) {
@@ -148,38 +142,26 @@ void buildLoads(WorldState& w) {
   }
 }
 
-// The systems of one Newton iteration; edges follow from the declared accesses.
-void buildIterationGraph(WorldState& w) {
-  TaskGraph& g = w.iteration;
-  g.add("clear", {}, writes(w.system), [&w] {
-    w.system.r.setZero(w.fibres.q.size());
-    if (w.withTangent) w.system.K.coeffs().setZero();
-  });
-  g.add("beam assembly", reads(w.fibres, w.beams), writes(w.system),
-        [&w] { assembleBeams(w.fibres, w.beams, w.fibres.q, w.withTangent, w.system); });
-  g.add("loads", reads(w.fibres, w.loads, w.groups), writes(w.system), [&w] {
-    assembleLoads(w.fibres, w.loads, w.groups, w.fibres.q, w.solveTime, w.withTangent, w.system);
-  });
-  if (w.contact.fibres) {
-    const ContactAssemblyParams p{w.contact.pMax, w.contact.pRegRatio, w.scene.contact.friction,
-                                  w.contact.gMax, w.contact.symmetrised};
-    g.add("fibre contact", reads(w.fibres), writes(w.system, w.mechanics), [&w, p] {
-      assembleContacts(w.fibres.q, p, w.withTangent, w.mechanics, w.system);
-    });
+// The stabilisation springs of the listed fibres (all when none is listed).
+void buildStabilisation(WorldState& w) {
+  const StabilisationDef& st = w.scene.stabilisation;
+  StabilisationStore& s = w.stabilisation;
+  s.stiffness.assign(w.fibres.nodes(), 0.0);
+  for (Index f = 0; f < w.fibres.fibres(); ++f) {
+    const bool listed = st.fibres.empty() ||
+                        std::find(st.fibres.begin(), st.fibres.end(), w.fibres.name[f]) != st.fibres.end();
+    if (!listed) continue;
+    for (Index n = 0; n < w.fibres.nodeCount[f]; ++n) s.stiffness[w.fibres.firstNode[f] + n] = st.stiffness;
   }
-  if (w.contact.tools) {
-    const ToolContactParams p{w.contact.toolProximity, w.contact.pRegRatio, w.contact.gMax,
-                              w.contact.symmetrised};
-    g.add("tool contact", reads(w.fibres), writes(w.system, w.tools, w.toolContacts), [&w, p] {
-      assembleToolContacts(w.fibres, w.fibres.q, w.tools, w.toolContacts, p, w.solveTime,
-                           w.withTangent, w.system);
-    });
-  }
-  if (w.scene.stabilisation.stiffness > 0)
-    g.add("stabilisation", reads(w.fibres), writes(w.system), [&w] {
-      assembleStabilisation(w.fibres, w.fibres.q, w.qStart, w.stabilisation, w.withTangent, w.system);
-    });
-  w.arena->execute([&] { g.build(); });
+  s.active = st.stiffness > 0;
+  s.qStart = w.fibres.q;
+}
+
+// The contact parameters, in one place, and the tools with their zones.
+void buildContact(WorldState& w) {
+  w.contact = resolveContact(w.fibres, w.scene);
+  buildTools(w.scene, w.fibres, w.materials, w.contact, w.tools, w.committed.toolZones);
+  w.trial = w.committed;
 }
 
 }  // namespace
@@ -218,18 +200,19 @@ void buildWorld(WorldState& w) {
   w.forceFloor = 1e-4 * maxE * maxArea;
 
   buildContact(w);
+  buildStabilisation(w);
   bool friction = w.scene.contact.enabled && w.scene.contact.friction > 0;
   for (const ToolDef& t : w.scene.tools) friction = friction || t.friction > 0;
   w.system.symmetric = !friction || w.contact.symmetrised;
-  w.qStart = w.fibres.q;
 
   numberEquations(w.fibres, w.constraints, w.system);
   w.arena->execute([&] { buildPattern(w.fibres, beamCliques(w.fibres), w.system); });
   w.system.r.setZero(w.fibres.q.size());
   w.system.fext.setZero(w.fibres.q.size());
-  buildIterationGraph(w);
+  buildPipeline(w);
   applyConstraints(w.fibres, w.constraints, w.groups, 0.0, w.fibres.q);
   assembleResidual(w, 0.0);
+  w.converged = {w.fibres.q, w.system.r, w.system.fext};
 }
 
 }  // namespace fibra

@@ -1,9 +1,14 @@
 // Step driver: one increment of pseudo-time, as a list of stages.
 //   1. target time of the next increment of the current scene step;
-//   2. attempt: held DOFs moved to their targets, Newton on the free DOFs;
-//   3. on failure, bisect the remaining interval (bounded by the step's maxCutbacks) and retry
-//      from the last converged sub-state; never accept a non-converged state;
-//   4. commit: time, increment and step counters.
+//   2. attempt: trial contact state = committed; held DOFs moved to their targets; Newton on the
+//      free DOFs (with contact: the nested loops of engine/contact_loops.h);
+//   3. converged: commit (swap trial and committed, keep q, r, f_ext) and go on to the target;
+//      failed: discard the trial (back to the last converged q, r, f_ext), bisect the remaining
+//      interval (bounded by the step's maxCutbacks) and retry; never accept a non-converged
+//      state;
+//   4. at the target: time, increment and step counters.
+// After a failure or a cancellation the world is at its last converged state: the start of the
+// increment, or the last sub-increment that converged after a cutback.
 #include "engine/contact_loops.h"
 #include "engine/world_state.h"
 #include "systems/boundary.h"
@@ -22,17 +27,14 @@ double stepStart(const WorldState& w, int step) {
 
 // |stabilisation force on the free DOFs| / F_ref at the converged state.
 double stabilisationEffect(const WorldState& w) {
-  const Eigen::VectorXd f = stabilisationForce(w.fibres, w.fibres.q, w.qStart, w.stabilisation);
+  const Eigen::VectorXd f = stabilisationForce(w.fibres, w.stabilisation);
   double free2 = 0;
   for (Index i = 0; i < w.system.freeCount; ++i) free2 += std::pow(f(w.system.dofOf[i]), 2);
   const double ref = std::max(w.system.fext.norm(), w.forceFloor);
   return std::sqrt(free2) / ref;
 }
 
-NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStart,
-                     StepTimings& timings, ContactReport& contact) {
-  w.solveTime = tTry;
-  w.qStart = w.fibres.q;
+NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   NewtonSettings settings;
   settings.maxIterations = st.maxIterations;
   settings.forceTolerance = st.forceTolerance;
@@ -40,18 +42,44 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
   settings.forceFloor = w.forceFloor;
   settings.lengthScale = w.lengthScale;
   settings.lineSearch = st.lineSearch;
+  return settings;
+}
+
+// The trial starts from the last converged state.
+void beginAttempt(WorldState& w) {
+  if (hasContact(w)) w.trial = w.committed;
+  w.stabilisation.qStart = w.fibres.q;
+}
+
+// The attempt converged: its state becomes the last converged one.
+void commit(WorldState& w, double time) {
+  if (hasContact(w)) std::swap(w.committed, w.trial);
+  w.converged.q = w.fibres.q;
+  w.converged.r = w.system.r;
+  w.converged.fext = w.system.fext;
+  w.time = time;
+}
+
+// The attempt failed or was cancelled: back to the last converged state.
+void discard(WorldState& w) {
+  w.fibres.q = w.converged.q;
+  w.system.r = w.converged.r;
+  w.system.fext = w.converged.fext;
+}
+
+NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStart,
+                     StepTimings& timings, ContactReport& contact) {
+  beginAttempt(w);
   NewtonCallbacks cb;
-  cb.assemble = [&w](bool withTangent) {
-    w.withTangent = withTangent;
-    w.iteration.run(w.def.trace);
-  };
-  cb.cancel = w.def.cancel;
+  cb.assemble = [&w, tTry](bool withTangent) { runStage(w, w.pipeline.assemble, tTry, withTangent); };
+  cb.cancel = [&w] { return w.cancel(); };
   if (w.def.progress) {
     const double span = st.endTime - tStart;
     cb.progress = [&w, tTry, tStart, span](int it, double residual) {
       w.def.progress({w.step, tTry, (tTry - tStart) / span, it, residual});
     };
   }
+  const NewtonSettings settings = newtonSettings(w, st);
   NewtonResult r;
   w.arena->execute([&] {
     if (hasContact(w)) {
@@ -67,29 +95,28 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
 
 }  // namespace
 
-void assembleResidual(WorldState& w, double t) {
-  w.solveTime = t;
-  w.withTangent = false;
-  w.arena->execute([&] { w.iteration.run(w.def.trace); });
+void runStage(WorldState& w, TaskGraph& stage, double t, bool withTangent) {
+  w.input.time = t;
+  w.input.withTangent = withTangent;
+  w.arena->execute([&] { stage.run(w.def.trace); });
 }
+
+void assembleResidual(WorldState& w, double t) { runStage(w, w.pipeline.assemble, t, false); }
 
 StepReport advance(WorldState& w) {
   StepReport rep;
   if (w.step >= int(w.scene.steps.size())) return rep;
   const auto clock0 = std::chrono::steady_clock::now();
+  const auto elapsed = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+  };
   const StepDef& st = w.scene.steps[w.step];
   const double tStart = stepStart(w, w.step);
   const double t1 = tStart + (w.increment + 1) * (st.endTime - tStart) / st.increments;
   rep.step = w.step;
   rep.increment = w.increment + 1;
+  w.cancel.arm(w.def.cancel);
 
-  // The world always holds the last converged (sub-)state: q, its time, its contact state and
-  // the residual assembled there.
-  const Eigen::VectorXd qStart = w.fibres.q;
-  const double timeStart = w.time;
-  Eigen::VectorXd qGood = qStart;
-  const ContactCheckpoint contactStart = contactCheckpoint(w);
-  ContactCheckpoint contactGood = contactStart;
   double dt = t1 - w.time;
   while (w.time < t1) {
     const double tTry = w.time + dt >= t1 - 1e-12 * std::abs(t1) ? t1 : w.time + dt;
@@ -97,29 +124,24 @@ StepReport advance(WorldState& w) {
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {
-      contactGood = contactCheckpoint(w);
-      qGood = w.fibres.q;
-      w.time = tTry;
+      commit(w, tTry);
       rep.iterations = nr.iterations;
       rep.residual = nr.residual;
       continue;
     }
+    discard(w);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled || ++rep.cutbacks > st.maxCutbacks) {
-      w.fibres.q = qStart;
-      w.time = timeStart;
-      restoreContact(w, contactStart);
       rep.status = cancelled ? StepStatus::Cancelled : StepStatus::Failed;
       rep.message = cancelled ? "cancelled" : "increment to t = " + std::to_string(t1) +
                     " failed after " + std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message;
       rep.time = w.time;
-      rep.timings.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+      rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
+      rep.timings.total = elapsed();
       return rep;
     }
     rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
                    std::to_string(tTry) + ": " + nr.message;
-    w.fibres.q = qGood;
-    restoreContact(w, contactGood);
     dt *= 0.5;
   }
 
@@ -130,7 +152,7 @@ StepReport advance(WorldState& w) {
   rep.status = StepStatus::Converged;
   rep.time = t1;
   rep.loadFactor = (t1 - tStart) / (st.endTime - tStart);
-  rep.timings.total = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
+  rep.timings.total = elapsed();
   return rep;
 }
 

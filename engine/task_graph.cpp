@@ -3,11 +3,15 @@
 #include <tbb/flow_graph.h>
 
 #include <algorithm>
-#include <map>
 
 namespace fibra {
 
 namespace flow = tbb::flow;
+
+std::string StoreNames::of(const void* address) const {
+  const auto it = names_.find(address);
+  return it == names_.end() ? std::string() : it->second;
+}
 
 struct TaskGraph::Impl {
   struct System {
@@ -16,6 +20,7 @@ struct TaskGraph::Impl {
     std::function<void()> run;
     std::vector<int> predecessors;
   };
+  const StoreNames* names = nullptr;
   std::vector<System> systems;
   Trace* trace = nullptr;
   std::unique_ptr<flow::graph> graph;
@@ -23,10 +28,18 @@ struct TaskGraph::Impl {
   std::vector<std::unique_ptr<flow::continue_node<flow::continue_msg>>> nodes;
 };
 
-TaskGraph::TaskGraph() : impl_(std::make_unique<Impl>()) {}
+TaskGraph::TaskGraph(const StoreNames* names) : impl_(std::make_unique<Impl>()) {
+  impl_->names = names;
+}
 TaskGraph::~TaskGraph() = default;
 
-void TaskGraph::add(const char* name, Access r, Access w, std::function<void()> run) {
+void TaskGraph::checkNamed(const char* system, const void* store, const char* type) const {
+  if (impl_->names && impl_->names->of(store).empty())
+    throw std::logic_error(std::string("task graph: system '") + system +
+                           "' is bound to an unnamed store of type " + type);
+}
+
+void TaskGraph::addSystem(const char* name, Access r, Access w, std::function<void()> run) {
   impl_->systems.push_back({name, std::move(r), std::move(w), std::move(run), {}});
 }
 
@@ -72,6 +85,7 @@ void TaskGraph::build() {
 }
 
 void TaskGraph::run(Trace* trace) {
+  if (impl_->systems.empty()) return;
   impl_->trace = trace;
   impl_->start->try_put(flow::continue_msg());
   impl_->graph->wait_for_all();
@@ -84,7 +98,47 @@ void TaskGraph::clear() {
   impl_->systems.clear();
 }
 
-const std::vector<int>& TaskGraph::predecessors(int i) const { return impl_->systems[i].predecessors; }
 int TaskGraph::size() const { return int(impl_->systems.size()); }
+const char* TaskGraph::name(int i) const { return impl_->systems[i].name; }
+
+int TaskGraph::find(const std::string& name) const {
+  for (int i = 0; i < size(); ++i)
+    if (name == impl_->systems[i].name) return i;
+  return -1;
+}
+
+const std::vector<int>& TaskGraph::predecessors(int i) const { return impl_->systems[i].predecessors; }
+
+bool TaskGraph::ordered(int a, int b) const {
+  // Predecessors have smaller indices: search backwards from the later one.
+  const int from = std::max(a, b), to = std::min(a, b);
+  std::vector<bool> seen(size(), false);
+  std::vector<int> stack{from};
+  while (!stack.empty()) {
+    const int i = stack.back();
+    stack.pop_back();
+    if (i == to) return true;
+    for (int p : predecessors(i))
+      if (p >= to && !seen[p]) seen[p] = true, stack.push_back(p);
+  }
+  return false;
+}
+
+namespace {
+
+std::vector<std::string> namesOf(const StoreNames* names, const Access& stores) {
+  std::vector<std::string> out;
+  for (const void* s : stores) out.push_back(names ? names->of(s) : std::string());
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> TaskGraph::reads(int i) const {
+  return namesOf(impl_->names, impl_->systems[i].reads);
+}
+std::vector<std::string> TaskGraph::writes(int i) const {
+  return namesOf(impl_->names, impl_->systems[i].writes);
+}
 
 }  // namespace fibra

@@ -2,6 +2,7 @@
 
 #include "engine/world_state.h"
 #include "systems/boundary.h"
+#include "systems/contact_queries.h"
 #include "systems/particle.h"
 
 namespace fibra {
@@ -27,37 +28,43 @@ const GroupStore& World::groups() const { return s_->groups; }
 const ConstraintStore& World::constraints() const { return s_->constraints; }
 Eigen::VectorXd World::residual() const { return s_->system.r; }
 
-Vec3 World::toolReaction(Index tool) const { return s_->tools.reaction[tool]; }
-const ZoneStore& World::zones() const { return s_->zones; }
-const ContactElementStore& World::contactElements() const { return s_->elements; }
-const ContactMechanicsStore& World::contactMechanics() const { return s_->mechanics; }
-const ToolContactStore& World::toolContacts() const { return s_->toolContacts; }
+Vec3 World::toolReaction(Index tool) const {
+  const ContactState& c = s_->committed;
+  Vec3 r = Vec3::Zero();
+  for (Index i = 0; i < c.toolElements.size(); ++i)
+    if (c.toolElements.tool[i] == tool) r -= c.toolForces.force[i];
+  return r;
+}
+
+const ContactState& World::contact() const { return s_->committed; }
 
 ContactSnapshot World::contactSnapshot() const {
   const WorldState& w = *s_;
+  const ContactState& s = w.committed;
+  const double gMax = w.contact.gMax;
   ContactSnapshot c;
-  const auto add = [&c](const Vec3& xI, const Vec3& xJ, const Vec3& N, double g, double RN,
-                        const Vec3& friction, bool slip, bool tool, Index I, Index J) {
+  const auto add = [&c](const Vec3& xI, const Vec3& xJ, const Vec3& N, const ContactForceStore& f,
+                        Index e, const Vec3& friction, bool slip, bool tool, Index I, Index J) {
     c.particleI.push_back(xI), c.particleJ.push_back(xJ), c.normal.push_back(N);
-    c.gap.push_back(g), c.normalForce.push_back(RN), c.friction.push_back(friction);
-    c.slip.push_back(slip), c.tool.push_back(tool), c.fibreI.push_back(I), c.fibreJ.push_back(J);
+    c.gap.push_back(f.gap[e]), c.normalForce.push_back(f.normalForce[e]);
+    c.friction.push_back(friction), c.slip.push_back(slip), c.tool.push_back(tool);
+    c.fibreI.push_back(I), c.fibreJ.push_back(J);
   };
-  const ContactMechanicsStore& m = w.mechanics;
-  for (Index e = 0; e < m.size(); ++e)
-    add(particlePosition(w.fibres.q, m.sideI[e]), particlePosition(w.fibres.q, m.sideJ[e]),
-        m.normal[e], m.gap[e], m.normalForce[e], m.force[e] - m.normalForce[e] * m.normal[e],
-        sliding(m.normalForce[e], m.gRev[e], w.contact.gMax), false, w.elements.fibreI[e],
-        w.elements.fibreJ[e]);
-  const ToolContactStore& t = w.toolContacts;
+  const ContactElementStore& el = s.elements;
+  const ContactForceStore& f = s.forces;
+  for (Index e = 0; e < el.size(); ++e)
+    add(particlePosition(w.fibres.q, el.sideI[e]), particlePosition(w.fibres.q, el.sideJ[e]),
+        el.normal[e], f, e, f.force[e] - f.normalForce[e] * el.normal[e],
+        sliding(f.normalForce[e], f.gRev[e], gMax), false, el.fibreI[e], el.fibreJ[e]);
+  const ToolContactStore& t = s.toolElements;
+  const ContactForceStore& tf = s.toolForces;
   for (Index i = 0; i < t.size(); ++i) {
-    const Vec3 x = particlePosition(
-        w.fibres.q, particleWeights(w.fibres, t.element[i], t.z[i], t.xi1[i], t.xi2[i]));
+    const Vec3 x = particlePosition(w.fibres.q, t.side[i]);
     const double mu = w.tools.friction[t.tool[i]];
-    const Vec3 friction = mu > 0 ? Vec3(-mu * t.normalForce[i] / w.contact.gMax * t.gRev[i])
-                                 : Vec3::Zero();
-    add(x, x - t.gap[i] * t.normal[i], t.normal[i], t.gap[i], t.normalForce[i], friction,
-        sliding(t.normalForce[i], t.gRev[i], w.contact.gMax), true,
-        w.fibres.elementFibre[t.element[i]], t.tool[i]);
+    const Vec3 friction = mu > 0 ? Vec3(-mu * tf.normalForce[i] / gMax * tf.gRev[i]) : Vec3::Zero();
+    add(x, x - tf.gap[i] * t.normal[i], t.normal[i], tf, i, friction,
+        sliding(tf.normalForce[i], tf.gRev[i], gMax), true, w.fibres.elementFibre[t.element[i]],
+        t.tool[i]);
   }
   return c;
 }

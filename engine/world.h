@@ -14,12 +14,11 @@
 
 #include "components/beam_store.h"
 #include "components/boundary.h"
-#include "components/contact.h"
-#include "components/contact_mechanics.h"
 #include "components/contact_snapshot.h"
-#include "systems/linear_solver.h"
-#include "components/tools.h"
+#include "components/contact_state.h"
 #include "components/fibres.h"
+#include "components/tools.h"
+#include "systems/linear_solver.h"
 #include "engine/scene.h"
 #include "core/report.h"
 #include "core/trace.h"
@@ -65,10 +64,9 @@ class World {
   const ConstraintStore& constraints() const;
   Reaction reaction(Index bc) const;      // of the current state
   Vec3 toolReaction(Index tool) const;    // force the fibres exert on a tool, N
-  const ZoneStore& zones() const;                        // of the last contact detection
-  const ContactElementStore& contactElements() const;    // their geometry
-  const ContactMechanicsStore& contactMechanics() const; // their forces (last assembly)
-  const ToolContactStore& toolContacts() const;
+  // The contact state of the current (last converged) state: zones with their penalties,
+  // fibre-fibre and fibre-tool contact elements with their forces, the friction history.
+  const ContactState& contact() const;
   ContactSnapshot contactSnapshot() const;  // all contact elements, flattened for output
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
 

@@ -1,87 +1,68 @@
-// The world's state: every store of one scene, the solver's caches and the step bookkeeping.
-// Internal to the engine (the public API is engine/world.h).
+// The world's state: every store of one scene, the contact state as committed and trial
+// instances, the caches, the stages of an iteration, and the step bookkeeping. Internal to the
+// engine (the public API is engine/world.h); tests and benches may reach in.
 #pragma once
 
+#include "components/beam_forces.h"
 #include "components/beam_store.h"
 #include "components/boundary.h"
-#include "components/contact.h"
 #include "components/contact_cache.h"
-#include "components/contact_mechanics.h"
+#include "components/contact_cliques.h"
+#include "components/contact_params.h"
+#include "components/contact_state.h"
 #include "components/fibres.h"
-#include "components/friction_history.h"
+#include "components/iteration.h"
 #include "components/linear_system.h"
+#include "components/stabilisation.h"
 #include "components/tools.h"
-#include "engine/task_graph.h"
+#include "core/cancel.h"
+#include "engine/pipeline.h"
 #include "engine/world.h"
-#include "systems/contact_params.h"
 #include "systems/linear_solver.h"
 
 #include <tbb/task_arena.h>
 
-#include <map>
 #include <memory>
 
 namespace fibra {
-
-// The report counts an element as sliding when its friction force is at least this share of
-// the Coulomb limit mu R_N (a re-detected element starts a little inside the limit: its
-// reversible slip is interpolated from the recorded history).
-inline constexpr double kSlidingShare = 0.99;
-inline bool sliding(double normalForce, const Vec3& gRev, double gMax) {
-  return normalForce > 0 && gRev.norm() >= kSlidingShare * gMax;
-}
-
-// Contact parameters resolved from the scene (defaults derived from the radii).
-struct ContactSettings {
-  bool tools = false;              // the scene has tools
-  bool fibres = false;             // fibre-fibre contact is on
-  double pMax = 0;                 // p_max of fibre-fibre zones, mm
-  int maxDetectionLoops = 3;       // n_A
-  int maxNormalLoops = 3;          // n_B
-  double pRegRatio = 0.5;          // p_reg / p_max
-  double penaltyChange = 10;       // bound on k_new / k_old per update
-  double penaltyTarget = 0.9;      // eq. 13 aims the deepest penetration at this x p_max
-  double gMax = 0;                 // reversible slip g_T,max, mm
-  double toolProximity = 0;        // tool contacts are made within R + this, mm (NaN: default)
-  bool symmetrised = false;        // friction tangent without its non-symmetric part
-  double normalTolerance = 1e-3;   // rad: loop B stops when no normal turns more
-  double particleTolerance = 1e-3; // x R: loop A stops when no centreline moved more
-  double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
-  double stepPenetration = 10;     // x p_max: deepest closing of an element in one Newton step
-};
 
 struct WorldState {
   SceneDef scene;
   WorldDef def;
 
-  // Stores.
+  // Stores of the scene (resolved once).
   MaterialStore materials;
-  FibreStore fibres;
+  FibreStore fibres;                 // q: the state being solved for
   BeamStore beams;
   GroupStore groups;
   ConstraintStore constraints;
   LoadStore loads;
-  LinearSystem system;
-
-  // Contact.
-  ContactSettings contact;
-  ContactParams detection;             // resolved detection parameters
-  ContactCache cache;                  // broadphase candidates, zone identities
-  ZoneStore zones;
-  ContactElementStore elements;
-  ContactMechanicsStore mechanics;
-  std::map<std::uint64_t, double> zonePenalty;  // k by zone id, carried across calls, N/mm
-  std::map<std::pair<Index, Index>, Index> contactClique;  // (element I, element J) -> clique
   ToolStore tools;
-  ToolContactStore toolContacts;
-  FrictionHistoryStore history;        // at the reference state of the current contact loop
-  std::vector<double> stabilisation;   // spring stiffness per node, N/mm
-  Eigen::VectorXd qStart;              // state at the start of the increment
+  StabilisationStore stabilisation;
+  ContactParams contact;             // every contact parameter, resolved in one place
+
+  // Stores an iteration writes.
+  IterationInput input;              // what the next stage runs for (time, tangent)
+  BeamForceStore beamForces;
+  LinearSystem system;
+  ContactLoopStats fibreStats, toolStats;
+
+  // Contact: the last converged state and the attempt in progress (components/contact_state.h);
+  // an attempt starts from trial = committed, acceptance swaps them.
+  ContactState committed, trial;
+  ContactCache cache;                // detection caches (candidates, scratch)
+  ContactCliqueStore cliques;        // contact blocks of the tangent's pattern
+
+  // The last converged state besides contact: what the world shows after a failed or cancelled
+  // attempt (the residual and external load assembled there).
+  struct {
+    Eigen::VectorXd q, r, fext;
+  } converged;
 
   // Solver.
   LinearSolver solver;
-  TaskGraph iteration;       // the systems of one Newton iteration
-  bool withTangent = true;   // what the next run of `iteration` assembles
+  Pipeline pipeline;                 // the stages, each a task graph of systems
+  Cancel cancel;                     // WorldDef::cancel, latched for the workers
   std::unique_ptr<tbb::task_arena> ownArena;
   tbb::task_arena* arena = nullptr;
   double lengthScale = 1;    // mm: largest fibre radius, scales position increments
@@ -89,19 +70,20 @@ struct WorldState {
 
   // Progress through the scene's steps.
   double time = 0;           // pseudo-time of the converged state
-  double solveTime = 0;      // pseudo-time the systems assemble for (the attempt's target)
   int step = 0;              // scene step of the next increment
   int increment = 0;         // increments of `step` already converged
 };
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }
 
-// The motion of a boundary condition's held DOFs, of a tool.
+// The motion of a boundary condition's held DOFs.
 PrescribedMotion motionOf(const BcDef& def);
-PrescribedMotion motionOf(const ToolDef& def);
 
 // Builds every store from a scene (throws SceneError on unresolved names or bad geometry).
 void buildWorld(WorldState& w);
+
+// Runs one stage at pseudo-time t (in the world's arena).
+void runStage(WorldState& w, TaskGraph& stage, double t, bool withTangent = true);
 
 // Assembles the residual (and so the reactions) of the current state at pseudo-time t.
 void assembleResidual(WorldState& w, double t);

@@ -84,7 +84,10 @@ void applyConstraints(const FibreStore& fs, const ConstraintStore& cs, const Gro
 }
 
 void assembleLoads(const FibreStore& fs, const LoadStore& loads, const GroupStore& groups,
-                   const Eigen::VectorXd& q, double time, bool withTangent, LinearSystem& ls) {
+                   const IterationInput& input, LinearSystem& ls) {
+  const Eigen::VectorXd& q = fs.q;
+  const double time = input.time;
+  const bool withTangent = input.withTangent;
   ls.fext.setZero(q.size());
   for (Index l = 0; l < loads.size(); ++l) {
     const Vec3 v = loads.vector[l] * tableValue(loads.table[l], time);

@@ -3,8 +3,9 @@
 // applyConstraints  reads ConstraintStore, GroupStore, FibreStore::qRef; writes the held DOFs
 //                   of q: x0 = c + R(t)(X0 - c) + d(t), g_a = R(t) G_a, R(t) the rotation by
 //                   angle(t) about the BC's axis through c (default c = X0).
-// assembleLoads     reads LoadStore, GroupStore, q; writes LinearSystem fext, r (subtracts
-//                   f_ext) and K (adds the moment loads' stiffness). Serial: loads are few.
+// assembleLoads     reads LoadStore, GroupStore, FibreStore (q), IterationInput (time,
+//                   withTangent); writes LinearSystem fext, r (subtracts f_ext) and K (adds the
+//                   moment loads' stiffness). Serial: loads are few.
 //   Force F on a node:   Pi = -F . x0.
 //   Line force w (N/mm) on an element: consistent nodal forces w (h/2) int N_a dz.
 //   Moment M on a node:  Pi = -|M| phi, phi the rotation of the section about the fixed axis
@@ -19,6 +20,7 @@
 #pragma once
 
 #include "components/boundary.h"
+#include "components/iteration.h"
 #include "components/linear_system.h"
 #include "core/report.h"
 
@@ -28,7 +30,7 @@ void applyConstraints(const FibreStore& fibres, const ConstraintStore& constrain
                       const GroupStore& groups, double time, Eigen::VectorXd& q);
 
 void assembleLoads(const FibreStore& fibres, const LoadStore& loads, const GroupStore& groups,
-                   const Eigen::VectorXd& q, double time, bool withTangent, LinearSystem& ls);
+                   const IterationInput& input, LinearSystem& ls);
 
 Reaction reactionOf(const ConstraintStore& constraints, const Eigen::VectorXd& q,
                     const Eigen::VectorXd& r, Index bc, const Vec3& point);

@@ -293,7 +293,8 @@ void queryElement(const FibreStore& fs, const ContactParams& p, const Broadphase
   });
 }
 
-void queryPairs(const FibreStore& fs, const ContactParams& p, BroadphaseCache& c, const Grid& g) {
+void queryPairs(const FibreStore& fs, const ContactParams& p, BroadphaseCache& c, const Grid& g,
+                const Cancel& cancel) {
   const Index n = Index(c.box.size());
   const Index chunks = (n + kQueryChunk - 1) / kQueryChunk;
   c.chunkCandidate.resize(chunks);
@@ -302,6 +303,7 @@ void queryPairs(const FibreStore& fs, const ContactParams& p, BroadphaseCache& c
     std::vector<Index>& out = c.chunkCandidate[k];
     std::vector<Index>& hits = c.hits.local();
     out.clear();
+    if (cancel()) return;
     for (Index A = k * kQueryChunk; A < std::min(n, (k + 1) * kQueryChunk); ++A) {
       const std::size_t before = out.size();
       queryElement(fs, p, c, g, A, hits, out);
@@ -321,7 +323,8 @@ void queryPairs(const FibreStore& fs, const ContactParams& p, BroadphaseCache& c
 }  // namespace
 
 bool updateBroadphase(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& params,
-                      CentrelineStore& centrelines, BroadphaseCache& cache, Trace* trace) {
+                      CentrelineStore& centrelines, BroadphaseCache& cache, Trace* trace,
+                      const Cancel& cancel) {
   Span span(trace, "contact-broadphase");
   {
     Span s(trace, "broadphase-centrelines");
@@ -345,9 +348,9 @@ bool updateBroadphase(const FibreStore& fs, const Eigen::VectorXd& q, const Cont
       s.items(cache.bucketFirst[cache.buckets]);
     }
     Span s(trace, "broadphase-query");
-    queryPairs(fs, params, cache, Grid{cache, 1 / cache.cellSize});
+    queryPairs(fs, params, cache, Grid{cache, 1 / cache.cellSize}, cancel);
     s.items(Index(cache.candidate.size()));
-    cache.valid = true;
+    cache.valid = !cancel.requested();  // a cancelled query left the candidate set incomplete
     ++cache.builds;
   }
   span.items(Index(cache.candidate.size()));

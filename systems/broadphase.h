@@ -26,14 +26,17 @@
 #pragma once
 
 #include "components/contact_cache.h"
+#include "core/cancel.h"
 #include "core/trace.h"
 #include "systems/contact_params.h"
 
 namespace fibra {
 
 // Updates the centrelines and, unless the skin test allows reuse, the candidate pairs.
-// Returns whether the candidate set was rebuilt (also in cache.rebuilt).
+// Returns whether the candidate set was rebuilt (also in cache.rebuilt). Cancelled (checked per
+// query chunk): returns early with an incomplete candidate set, marked invalid.
 bool updateBroadphase(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& params,
-                      CentrelineStore& centrelines, BroadphaseCache& cache, Trace* trace);
+                      CentrelineStore& centrelines, BroadphaseCache& cache, Trace* trace,
+                      const Cancel& cancel);
 
 }  // namespace fibra

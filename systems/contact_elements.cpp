@@ -1,5 +1,6 @@
 #include "systems/contact_elements.h"
 
+#include "core/columns.h"
 #include "systems/contact_geometry.h"
 #include "systems/contact_normals.h"
 
@@ -134,15 +135,6 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, double delta, double
   return out;
 }
 
-void resizeElements(ContactElementStore& el, Index n) {
-  for (auto* v : {&el.zone, &el.fibreI, &el.fibreJ}) v->resize(n);
-  for (auto* v : {&el.zeta, &el.sI, &el.xiI1, &el.xiI2, &el.sJ, &el.xiJ1, &el.xiJ2, &el.gap,
-                  &el.theta, &el.crossWeight})
-    v->resize(n);
-  el.normal.resize(n);
-  el.fallback.resize(n);
-}
-
 void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
                   const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
@@ -181,7 +173,8 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
 
 void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
                              const ContactParams& params, const CentrelineStore& centrelines,
-                             ZoneStore& zones, ContactElementStore& elements, Trace* trace) {
+                             ZoneStore& zones, ContactElementStore& elements, Trace* trace,
+                             const Cancel& cancel) {
   Span span(trace, "contact-elements");
   const Index nz = zones.size();
   auto geometry = [&](Index z) {
@@ -203,8 +196,9 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
     zones.firstElement[z] = total;
     total += zones.elementCount[z];
   }
-  resizeElements(elements, total);
+  resizeColumns(elements, total);
   tbb::parallel_for(tbb::blocked_range<Index>(0, nz, 4), [&](const tbb::blocked_range<Index>& r) {
+    if (cancel()) return;
     for (Index z = r.begin(); z != r.end(); ++z)
       zoneElements(fs, q, params, geometry(z), zones, z, elements);
   });

@@ -3,8 +3,8 @@
 // Reads  FibreStore, the state q (x0, g1, g2), ContactParams, CentrelineStore, ZoneStore
 //        (fibres, intervals).
 // Writes ZoneStore::intermediateLength, firstElement, elementCount; ContactElementStore (zone,
-//        zeta, particles, fallback bits; normal, gap, theta, crossWeight are sized and left to
-//        systems/contact_normals.h).
+//        zeta, particles, normal, gap, theta, crossWeight (eqs. 10-11, systems/contact_normals.h),
+//        fallback bits; every other column is sized and left to the systems after it).
 // Threading: parallel over zones, twice: lengths, then (after a prefix sum of the counts) the
 //        elements, each zone writing its own range. Independent of the thread count.
 //
@@ -34,13 +34,16 @@
 #pragma once
 
 #include "components/contact_cache.h"
+#include "core/cancel.h"
 #include "core/trace.h"
 #include "systems/contact_params.h"
 
 namespace fibra {
 
+// Cancelled (checked per chunk of zones): returns early with some zones' elements left unset.
 void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
                              const ContactParams& params, const CentrelineStore& centrelines,
-                             ZoneStore& zones, ContactElementStore& elements, Trace* trace);
+                             ZoneStore& zones, ContactElementStore& elements, Trace* trace,
+                             const Cancel& cancel);
 
 }  // namespace fibra

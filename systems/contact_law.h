@@ -18,6 +18,7 @@
 // symmetrised tangent drops it. Pure functions; no state.
 #pragma once
 
+#include "components/contact_forces.h"
 #include "components/fibres.h"
 
 #include <Eigen/Core>
@@ -88,6 +89,12 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
   }
   out.stiffness = -dfdd;
   return out;
+}
+
+// Sizes a force store for n elements (values are overwritten by the law systems).
+inline void resizeContactForces(ContactForceStore& f, Index n) {
+  f.gap.resize(n), f.normalForce.resize(n), f.force.resize(n), f.stiffness.resize(n);
+  f.gRev.resize(n), f.slip.resize(n);
 }
 
 }  // namespace fibra

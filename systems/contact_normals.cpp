@@ -1,9 +1,11 @@
 #include "systems/contact_normals.h"
 
 #include "systems/contact_geometry.h"
+#include "systems/friction_history.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include <Eigen/Geometry>
 
@@ -45,25 +47,32 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
 }
 
 void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
-                          const ContactParams& params, ContactElementStore& el, Trace* trace) {
+                          const ContactParams& params, ContactElementStore& el,
+                          ContactLoopStats& stats, Trace* trace) {
   Span span(trace, "contact-normals");
   const Index n = el.size();
-  tbb::parallel_for(tbb::blocked_range<Index>(0, n, 256), [&](const tbb::blocked_range<Index>& r) {
-    for (Index e = r.begin(); e != r.end(); ++e) {
-      const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
-      const Section I = contactSection(fs, q, fI, el.sI[e]);
-      const Section J = contactSection(fs, q, fJ, el.sJ[e]);
-      const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
-      const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
-                                        params.thetaParallel, params.thetaCross);
-      el.normal[e] = ng.normal;
-      el.gap[e] = ng.gap;
-      el.theta[e] = ng.theta;
-      el.crossWeight[e] = ng.crossWeight;
-      el.fallback[e] = ng.fallback ? el.fallback[e] | kFallbackNormal
-                                   : el.fallback[e] & ~std::uint8_t(kFallbackNormal);
-    }
-  });
+  stats.normalTurn = tbb::parallel_reduce(
+      tbb::blocked_range<Index>(0, n, 256), 0.0,
+      [&](const tbb::blocked_range<Index>& r, double turned) {
+        for (Index e = r.begin(); e != r.end(); ++e) {
+          const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
+          const Section I = contactSection(fs, q, fI, el.sI[e]);
+          const Section J = contactSection(fs, q, fJ, el.sJ[e]);
+          const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
+          const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
+                                            params.thetaParallel, params.thetaCross);
+          turned = std::max(turned, std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
+          el.normal[e] = ng.normal;
+          el.gap[e] = ng.gap;
+          el.theta[e] = ng.theta;
+          el.crossWeight[e] = ng.crossWeight;
+          el.fallback[e] = ng.fallback ? el.fallback[e] | kFallbackNormal
+                                       : el.fallback[e] & ~std::uint8_t(kFallbackNormal);
+          el.gRev0[e] = projectOnPlane(el.gRev0[e], ng.normal);
+        }
+        return turned;
+      },
+      [](double a, double b) { return std::max(a, b); });
   span.items(n);
 }
 

@@ -4,7 +4,8 @@
 //
 // Reads  FibreStore, the state q, ContactParams (theta_cross, theta_parallel), the particles of
 //        ContactElementStore.
-// Writes ContactElementStore::normal, gap, theta, crossWeight, and the kFallbackNormal bit.
+// Writes ContactElementStore::normal, gap, theta, crossWeight, the kFallbackNormal bit and (the
+//        update on its own) gRev0 and ContactLoopStats::normalTurn.
 // Threading: parallel over contact elements, each writing its own entries.
 //
 // With the sections of the two particles (centres x0, unit tangents t) and
@@ -20,6 +21,7 @@
 #pragma once
 
 #include "components/contact.h"
+#include "components/iteration.h"
 #include "core/trace.h"
 #include "systems/contact_params.h"
 #include "systems/interpolation.h"
@@ -37,8 +39,11 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
                        double thetaCross);
 
+// Loop B: eqs. 10-11 again at the state q for the same particles; the friction reference's slip
+// g_rev,0 re-projected onto the new tangent plane; stats.normalTurn = the largest angle a
+// normal turned by, rad.
 void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
                           const ContactParams& params, ContactElementStore& elements,
-                          Trace* trace);
+                          ContactLoopStats& stats, Trace* trace);
 
 }  // namespace fibra

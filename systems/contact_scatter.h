@@ -1,5 +1,16 @@
-// Scatter of one contact element into the residual and the tangent.
+// Contact scatter systems: the forces of the contact elements (fibre-fibre and fibre-tool) into
+// the linear system.
 //
+// scatterFibreContacts  reads ContactElementStore (particle weights), ContactForceStore,
+//   ContactCliqueStore (cliques, colours), IterationInput (withTangent); writes LinearSystem r,
+//   K. Colour by colour; the cliques of one colour (no shared node) in parallel, the elements of
+//   a clique in ascending order: every entry receives its contributions in a fixed order.
+// scatterToolContacts   reads ToolContactStore (particle weights), ContactForceStore,
+//   IterationInput; writes LinearSystem r, K, serially in element order (tool contacts are few);
+//   the clique of a tool element is its beam element's.
+// Both skip elements without normal force.
+//
+// One element (scatterContact below):
 // A contact element acts on the relative position d = sum_s sign_s x_s of its particles
 // (sign +1 for side I, -1 for side J; a tool side has no DOFs). With f the force on side I and
 // S = -df/dd its stiffness, it adds
@@ -8,7 +19,12 @@
 // Not thread-safe on its own: callers scatter cliques of one colour in parallel.
 #pragma once
 
+#include "components/contact.h"
+#include "components/contact_cliques.h"
+#include "components/contact_forces.h"
+#include "components/iteration.h"
 #include "components/linear_system.h"
+#include "components/tools.h"
 #include "systems/particle.h"
 
 namespace fibra {
@@ -39,5 +55,12 @@ inline void scatterContact(const ParticleWeights* side, const double* sign, int 
                   if (const Index p = pos[(i0 + i) * n + j0 + j]; p >= 0) values[p] += w * S(i, j);
             }
 }
+
+void scatterFibreContacts(const ContactElementStore& elements, const ContactForceStore& forces,
+                          const ContactCliqueStore& cliques, const IterationInput& input,
+                          LinearSystem& ls);
+
+void scatterToolContacts(const ToolContactStore& elements, const ContactForceStore& forces,
+                         const IterationInput& input, LinearSystem& ls);
 
 }  // namespace fibra

@@ -1,15 +1,34 @@
 #include "systems/friction_history.h"
 
+#include "core/columns.h"
+#include "systems/interpolation.h"
+
 #include <algorithm>
 #include <tuple>
 
 namespace fibra {
 
+void recordFrictionHistory(const FibreStore& fs, const ContactElementStore& el,
+                           const ContactForceStore& f, const ToolContactStore& tel,
+                           const ContactForceStore& tf, FrictionHistoryStore& history) {
+  std::vector<HistoryEntry> entries;
+  for (Index e = 0; e < el.size(); ++e) {
+    if (f.normalForce[e] <= 0) continue;
+    entries.push_back({el.fibreI[e], el.fibreJ[e], el.sI[e], f.gRev[e]});
+    entries.push_back({el.fibreJ[e], el.fibreI[e], el.sJ[e], -f.gRev[e]});
+  }
+  for (Index i = 0; i < tel.size(); ++i)
+    if (tf.normalForce[i] > 0)
+      entries.push_back({fs.elementFibre[tel.element[i]], -1 - tel.tool[i],
+                         arcLength(fs, tel.element[i], tel.z[i]), tf.gRev[i]});
+  recordHistory(entries, history);
+}
+
 void recordHistory(std::vector<HistoryEntry>& entries, FrictionHistoryStore& out) {
   std::sort(entries.begin(), entries.end(), [](const HistoryEntry& a, const HistoryEntry& b) {
     return std::tie(a.fibre, a.partner, a.s) < std::tie(b.fibre, b.partner, b.s);
   });
-  out = FrictionHistoryStore{};
+  clearColumns(out);
   for (const HistoryEntry& e : entries) {
     out.fibre.push_back(e.fibre);
     out.partner.push_back(e.partner);

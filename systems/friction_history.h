@@ -1,9 +1,13 @@
-// Friction-history transfer system (paper section 4.3.1).
+// Friction history (paper section 4.3.1): the reversible slips of the contact elements kept on
+// the fibres' particles from one loop A pass to the next, for fibre-fibre and fibre-tool
+// elements alike (one path; the transfer back is systems/friction_reference.h).
 //
-// record  reads the contact elements of the loop that just converged (their particles and
-//         reversible slips) and writes a FrictionHistoryStore: for an element with slip g,
-//         particle I stores +g against partner J and particle J stores -g against partner I
-//         (a tool side stores nothing). Sorted by (fibre, partner, s).
+// recordFrictionHistory (the system) reads the contact elements of the pass that just converged
+//         (ContactElementStore, ToolContactStore: particles; their ContactForceStores: R_N and
+//         g_rev) and writes the FrictionHistoryStore: for an element carrying a normal force with
+//         slip g, particle I stores +g against partner J and particle J stores -g against
+//         partner I; a tool element's particle stores g against partner -1 - tool. Sorted by
+//         (fibre, partner, s). Serial (a sort).
 // lookup  the slip stored on `fibre` against `partner` at arc length s: linear interpolation
 //         between the stored particles on either side of s, the nearer one alone when only one
 //         lies within `reach` (mm), zero when none does.
@@ -13,7 +17,10 @@
 // separate histories. Serial record (a sort), parallel-safe lookups (read-only).
 #pragma once
 
+#include "components/contact.h"
+#include "components/contact_forces.h"
 #include "components/friction_history.h"
+#include "components/tools.h"
 
 namespace fibra {
 
@@ -24,6 +31,11 @@ struct HistoryEntry {
   Vec3 gRev;
 };
 
+void recordFrictionHistory(const FibreStore& fibres, const ContactElementStore& elements,
+                           const ContactForceStore& forces, const ToolContactStore& toolElements,
+                           const ContactForceStore& toolForces, FrictionHistoryStore& history);
+
+// The history of these entries (sorted here).
 void recordHistory(std::vector<HistoryEntry>& entries, FrictionHistoryStore& out);
 
 Vec3 lookupHistory(const FrictionHistoryStore& h, Index fibre, Index partner, double s, double reach);

@@ -13,9 +13,11 @@ double dofStiffness(const FibreStore& fs, const std::vector<double>& k, Index do
 
 }  // namespace
 
-void assembleStabilisation(const FibreStore& fs, const Eigen::VectorXd& q,
-                           const Eigen::VectorXd& qStart, const std::vector<double>& k,
-                           bool withTangent, LinearSystem& ls) {
+void assembleStabilisation(const FibreStore& fs, const StabilisationStore& st,
+                           const IterationInput& input, LinearSystem& ls) {
+  const Eigen::VectorXd &q = fs.q, &qStart = st.qStart;
+  const std::vector<double>& k = st.stiffness;
+  const bool withTangent = input.withTangent;
   tbb::parallel_for(Index(0), fs.nodes(), [&](Index n) {
     if (k[n] == 0) return;
     for (Index d = kNodeDofs * n; d < kNodeDofs * (n + 1); ++d) {
@@ -28,10 +30,10 @@ void assembleStabilisation(const FibreStore& fs, const Eigen::VectorXd& q,
   });
 }
 
-Eigen::VectorXd stabilisationForce(const FibreStore& fs, const Eigen::VectorXd& q,
-                                   const Eigen::VectorXd& qStart, const std::vector<double>& k) {
+Eigen::VectorXd stabilisationForce(const FibreStore& fs, const StabilisationStore& st) {
+  const Eigen::VectorXd &q = fs.q, &qStart = st.qStart;
   Eigen::VectorXd f = Eigen::VectorXd::Zero(q.size());
-  for (Index d = 0; d < q.size(); ++d) f(d) = dofStiffness(fs, k, d) * (q(d) - qStart(d));
+  for (Index d = 0; d < q.size(); ++d) f(d) = dofStiffness(fs, st.stiffness, d) * (q(d) - qStart(d));
   return f;
 }
 

@@ -1,5 +1,7 @@
 #include "systems/zone_builder.h"
 
+#include "core/columns.h"
+
 #include "systems/contact_geometry.h"
 
 #include <tbb/blocked_range.h>
@@ -180,12 +182,7 @@ std::int64_t buildFibre(const FibreStore& fs, const ContactParams& p, const Cent
 }
 
 void writeZones(const ZoneCache& cache, ZoneStore& z) {
-  const Index n = cache.chunkFirst.back();
-  for (auto* v : {&z.fibreI, &z.fibreJ, &z.testPoints, &z.previous, &z.firstElement, &z.elementCount})
-    v->resize(n);
-  for (auto* v : {&z.sI1, &z.sI2, &z.sJ1, &z.sJ2, &z.minDistance, &z.intermediateLength})
-    v->resize(n);
-  z.id.resize(n);
+  resizeColumns(z, cache.chunkFirst.back());
   const Index chunks = Index(cache.chunkZones.size());
   tbb::parallel_for(Index(0), chunks, [&](Index k) {
     Index at = cache.chunkFirst[k];
@@ -202,6 +199,7 @@ void writeZones(const ZoneCache& cache, ZoneStore& z) {
       z.previous[at] = -1;
       z.intermediateLength[at] = 0;
       z.firstElement[at] = z.elementCount[at] = 0;
+      z.penalty[at] = z.pMax[at] = 0;
       ++at;
     }
   });
@@ -211,7 +209,7 @@ void writeZones(const ZoneCache& cache, ZoneStore& z) {
 
 void buildZones(const FibreStore& fs, const ContactParams& params,
                 const CentrelineStore& centrelines, const BroadphaseCache& broadphase,
-                ZoneCache& cache, ZoneStore& zones, Trace* trace) {
+                ZoneCache& cache, ZoneStore& zones, Trace* trace, const Cancel& cancel) {
   Span span(trace, "contact-zones");
   const Index nF = fs.fibres();
   const Index chunks = (nF + kFibreChunk - 1) / kFibreChunk;
@@ -224,6 +222,7 @@ void buildZones(const FibreStore& fs, const ContactParams& params,
       std::vector<ZoneRecord>& out = cache.chunkZones[k];
       out.clear();
       tested[k] = 0;
+      if (cancel()) continue;
       for (Index I = k * kFibreChunk; I < std::min(nF, (k + 1) * kFibreChunk); ++I)
         tested[k] += buildFibre(fs, params, centrelines, broadphase, I, S, out);
     }

@@ -22,13 +22,15 @@
 #pragma once
 
 #include "components/contact_cache.h"
+#include "core/cancel.h"
 #include "core/trace.h"
 #include "systems/contact_params.h"
 
 namespace fibra {
 
+// Cancelled (checked per fibre chunk): returns early with some chunks' zones missing.
 void buildZones(const FibreStore& fs, const ContactParams& params,
                 const CentrelineStore& centrelines, const BroadphaseCache& broadphase,
-                ZoneCache& cache, ZoneStore& zones, Trace* trace);
+                ZoneCache& cache, ZoneStore& zones, Trace* trace, const Cancel& cancel);
 
 }  // namespace fibra

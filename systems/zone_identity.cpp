@@ -47,11 +47,10 @@ void findMatch(const FibreStore& fs, const ContactParams& p, const ZoneStore& ol
 
 }  // namespace
 
-void matchZones(const FibreStore& fs, const ContactParams& params, ZoneCache& cache,
-                ZoneStore& zones, Trace* trace) {
+void matchZones(const FibreStore& fs, const ContactParams& params, const ZoneStore& old,
+                ZoneCache& cache, ZoneStore& zones, Trace* trace) {
   Span span(trace, "contact-zone-identity");
   const Index n = zones.size();
-  const ZoneStore& old = cache.previous;
   cache.matchScore.resize(n);
   tbb::parallel_for(Index(0), n, [&](Index z) { findMatch(fs, params, old, zones, cache.matchScore, z); });
   cache.bestNew.assign(old.size(), -1);
@@ -60,11 +59,11 @@ void matchZones(const FibreStore& fs, const ContactParams& params, ZoneCache& ca
     if (o >= 0 && (cache.bestNew[o] < 0 || cache.matchScore[z] > cache.matchScore[cache.bestNew[o]]))
       cache.bestNew[o] = z;
   }
+  zones.nextId = old.nextId;
   for (Index z = 0; z < n; ++z) {
     const Index o = zones.previous[z];
-    zones.id[z] = o >= 0 && cache.bestNew[o] == z ? old.id[o] : cache.nextId++;
+    zones.id[z] = o >= 0 && cache.bestNew[o] == z ? old.id[o] : zones.nextId++;
   }
-  cache.previous = zones;
   span.items(n);
 }
 

@@ -105,12 +105,14 @@ TEST_CASE("normals are unit and point from J to I; swapping I and J flips N and 
     detect(fs, q, p, d);
     REQUIRE(d.el.size() >= 20);
     ContactElementStore again = d.el, swapped = d.el;
-    updateNormalsAndGaps(fs, q, p, again, nullptr);  // loop B at the same state: same values
+    ContactLoopStats stats;
+    updateNormalsAndGaps(fs, q, p, again, stats, nullptr);  // loop B at the same state: same values
+    CHECK(stats.normalTurn <= 1e-7);
     std::swap(swapped.fibreI, swapped.fibreJ);
     std::swap(swapped.sI, swapped.sJ);
     std::swap(swapped.xiI1, swapped.xiJ1);
     std::swap(swapped.xiI2, swapped.xiJ2);
-    updateNormalsAndGaps(fs, q, p, swapped, nullptr);
+    updateNormalsAndGaps(fs, q, p, swapped, stats, nullptr);
     for (Index e = 0; e < d.el.size(); ++e) {
       const Vec3 x0I = sectionAt(fs, q, locate(fs, d.el.fibreI[e], d.el.sI[e])).x0;
       const Vec3 x0J = sectionAt(fs, q, locate(fs, d.el.fibreJ[e], d.el.sJ[e])).x0;

@@ -2,9 +2,8 @@
 // together share the load by their stiffnesses; two parallel beams under a line load transmit it
 // uniformly; regenerating the contact elements without motion leaves the forces unchanged.
 #include "contact_scenes.h"
-#include "engine/fibre_contact.h"
-#include "systems/friction_history.h"
 #include "engine/world_state.h"
+#include "systems/friction_history.h"
 
 #include <doctest/doctest.h>
 
@@ -21,7 +20,7 @@ bool solveAll(World& w) {
 
 double totalNormalForce(const World& w) {
   double sum = 0;
-  for (double r : w.contactMechanics().normalForce) sum += r;
+  for (double r : w.contact().forces.normalForce) sum += r;
   return sum;
 }
 
@@ -38,7 +37,7 @@ TEST_CASE("two crossing simply supported beams pressed at midspan share the load
     CHECK(error < previousError);  // converges as p_max -> 0
     previousError = error;
     double deepest = 0;
-    for (double g : w.contactMechanics().gap) deepest = std::max(deepest, -g);
+    for (double g : w.contact().forces.gap) deepest = std::max(deepest, -g);
     CHECK(deepest <= pMax);
     if (pMax <= 1e-4) CHECK(error < 0.01);
   }
@@ -48,8 +47,8 @@ TEST_CASE("parallel beams under a uniform line load carry a uniform contact line
   const double w = 0.01;  // N/mm
   World world(parallelBeams(w, 1e-4));
   REQUIRE(solveAll(world));
-  const ContactElementStore& el = world.contactElements();
-  const ContactMechanicsStore& m = world.contactMechanics();
+  const ContactElementStore& el = world.contact().elements;
+  const ContactForceStore& m = world.contact().forces;
   REQUIRE(m.size() > 10);
   // Line force: each element stands for the length between its neighbours along A.
   std::vector<std::pair<double, double>> sf;  // (s on A, force)
@@ -77,17 +76,12 @@ void pressedCrossing(WorldState& w, double slide, double mu) {
   w.scene.contact.friction = mu;
   w.scene.contact.maxReversibleSlip = 5e-4;
   buildWorld(w);
-  detectFibreContacts(w);
-  rebaseFibreContacts(w);
+  runStage(w, w.pipeline.detect, 0);
   for (Index n = w.fibres.firstNode[1]; n < w.fibres.firstNode[1] + w.fibres.nodeCount[1]; ++n)
     x0Of(w.fibres.q, n) += Vec3(0.3 * slide, slide, -6e-4);
 }
 
-void assembleAt(WorldState& w, bool tangent) {
-  w.solveTime = 0;
-  w.withTangent = tangent;
-  w.iteration.run(nullptr);
-}
+void assembleAt(WorldState& w, bool tangent) { runStage(w, w.pipeline.assemble, 0, tangent); }
 
 }  // namespace
 
@@ -97,9 +91,10 @@ TEST_CASE("fibre contact tangent matches finite differences, in stick and in sli
     WorldState w;
     pressedCrossing(w, slide, 0.3);
     assembleAt(w, true);
-    REQUIRE(w.mechanics.size() > 0);
-    REQUIRE(w.mechanics.normalForce[0] > 0);
-    CHECK(bool(w.mechanics.slip[0]) == (slide > 1e-3));
+    const ContactForceStore& f = w.trial.forces;
+    REQUIRE(f.size() > 0);
+    REQUIRE(f.normalForce[0] > 0);
+    CHECK(bool(f.slip[0]) == (slide > 1e-3));
     const Eigen::MatrixXd K(w.system.K);
     Eigen::MatrixXd Kfd(w.system.freeCount, w.system.freeCount);
     const double h = 1e-8;
@@ -133,22 +128,20 @@ TEST_CASE("regenerating the contact elements without motion leaves the forces un
   // Regenerate at the converged state, record the history of these elements, regenerate again
   // with no motion: the second set must reproduce the first one's forces through the history.
   int sliding = 0;
-  for (auto x : w.mechanics.slip) sliding += x;
+  for (auto x : w.committed.forces.slip) sliding += x;
   CHECK(sliding > 0);  // the solved state slides: the history holds slips at g_T,max
-  detectFibreContacts(w);
-  rebaseFibreContacts(w);
+  ContactState& t = w.trial;
+  t = w.committed;
+  runStage(w, w.pipeline.detect, w.time);
   assembleAt(w, false);
-  std::vector<HistoryEntry> entries;
-  fibreHistoryEntries(w, entries);
-  recordHistory(entries, w.history);
-  const std::vector<Vec3> before = w.mechanics.force;
-  detectFibreContacts(w);
-  rebaseFibreContacts(w);
+  recordFrictionHistory(w.fibres, t.elements, t.forces, t.toolElements, t.toolForces, t.history);
+  const std::vector<Vec3> before = t.forces.force;
+  runStage(w, w.pipeline.detect, w.time);
   assembleAt(w, false);
-  REQUIRE(w.mechanics.force.size() == before.size());
+  REQUIRE(t.forces.force.size() == before.size());
   double diff = 0, size = 0;
   for (size_t e = 0; e < before.size(); ++e) {
-    diff = std::max(diff, (w.mechanics.force[e] - before[e]).norm());
+    diff = std::max(diff, (t.forces.force[e] - before[e]).norm());
     size = std::max(size, before[e].norm());
   }
   CHECK(size > 0);

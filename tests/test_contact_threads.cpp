@@ -60,14 +60,14 @@ void checkRepeatable(const FibreStore& fs, const Eigen::VectorXd& q) {
   CHECK(d.report.broadphaseRebuilt);
   const ZoneStore first = d.zones;
   const ContactElementStore firstEl = d.el;
-  const std::uint64_t nextId = d.cache.zones.nextId;
+  const std::uint64_t nextId = d.zones.nextId;
   CHECK(std::all_of(first.previous.begin(), first.previous.end(), [](Index o) { return o == -1; }));
   bool numbered = true;  // a fresh cache numbers the zones 1, 2, ... in zone order
   for (Index z = 0; z < first.size(); ++z) numbered &= first.id[z] == std::uint64_t(z) + 1;
   CHECK(numbered);
   detectIn(2, fs, q, p, d);
   CHECK_FALSE(d.report.broadphaseRebuilt);
-  CHECK(d.cache.zones.nextId == nextId);
+  CHECK(d.zones.nextId == nextId);
   CHECK(fixtures::sameBits(d.zones.id, first.id));
   bool selfPrevious = true;
   for (Index z = 0; z < d.zones.size(); ++z) selfPrevious &= d.zones.previous[z] == z;
@@ -130,7 +130,7 @@ TEST_CASE("zones keep their ids under a motion within the skin; the grid is reus
   Detected d;
   detectIn(2, fs, fs.q, p, d);
   const ZoneStore old = d.zones;
-  const std::uint64_t firstFresh = d.cache.zones.nextId;
+  const std::uint64_t firstFresh = d.zones.nextId;
   // Every node moves by less than skin / 2 (each component by at most skin / 4).
   const Eigen::VectorXd q = fixtures::deformed(fs, 9, p.skin / 4, false);
   detectIn(2, fs, q, p, d);

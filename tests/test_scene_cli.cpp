@@ -146,7 +146,7 @@ TEST_CASE(
   REQUIRE(stages.size() >= 2);
   CHECK(stages[0].at(0) == "stage");
   CHECK(std::find_if(stages.begin(), stages.end(),
-                     [](const auto& row) { return row.at(0) == "beam assembly"; }) != stages.end());
+                     [](const auto& row) { return row.at(0) == "beam evaluation"; }) != stages.end());
   checkNoPartFiles(out);
 }
 

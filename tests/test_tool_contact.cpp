@@ -65,8 +65,8 @@ TEST_CASE("assembled tangent with frictional tool contact matches finite differe
     w.scene = dragScene(0.01, 0, 0.3, 1);
     w.scene.tools[0].maxPenetration = 1e-3;
     buildWorld(w);
-    detectToolContacts(w.fibres, w.fibres.q, w.tools, 0, w.contact.toolProximity, w.toolContacts);
-    REQUIRE(w.toolContacts.size() > 0);
+    runStage(w, w.pipeline.detect, 0);
+    REQUIRE(w.trial.toolElements.size() > 0);
     // Push the fibre into the roller and slide it: stick for a small slide, slip for a large one.
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-1e-5, 1e-5);
@@ -74,16 +74,12 @@ TEST_CASE("assembled tangent with frictional tool contact matches finite differe
       x0Of(w.fibres.q, n) += Vec3(0, slip ? 2e-3 : 1e-5, -2.5e-3);
       for (int c = 0; c < kNodeDofs; ++c) w.fibres.q(kNodeDofs * n + c) += u(rng);
     }
-    auto assemble = [&w](bool tangent) {
-      w.solveTime = 0;
-      w.withTangent = tangent;
-      w.iteration.run(nullptr);
-    };
+    auto assemble = [&w](bool tangent) { runStage(w, w.pipeline.assemble, 0, tangent); };
     assemble(true);
     int sliding = 0, active = 0;
-    for (Index i = 0; i < w.toolContacts.size(); ++i) {
-      sliding += w.toolContacts.slip[i];
-      active += w.toolContacts.normalForce[i] > 0;
+    for (Index i = 0; i < w.trial.toolForces.size(); ++i) {
+      sliding += w.trial.toolForces.slip[i];
+      active += w.trial.toolForces.normalForce[i] > 0;
     }
     REQUIRE(active > 0);
     CHECK((sliding > 0) == slip);

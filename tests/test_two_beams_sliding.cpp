@@ -36,17 +36,17 @@ Row measure(const World& w, const StepReport& r) {
   const Vec3 onB = -(holds + Vec3(0, 0, -0.2));
   row.horizontal = holds.y();
   row.vertical = (w.reaction(0).force + w.reaction(1).force).z();
-  const ContactMechanicsStore& m = w.contactMechanics();
+  const ContactElementStore& el = w.contact().elements;
+  const ContactForceStore& f = w.contact().forces;
   Vec3 n = Vec3::Zero();  // force-weighted normal, from A to B
-  for (Index e = 0; e < m.size(); ++e) {
-    const double side = w.contactElements().fibreI[e] == 1 ? 1 : -1;
-    n += side * m.normalForce[e] * m.normal[e];
+  for (Index e = 0; e < el.size(); ++e) {
+    const double side = el.fibreI[e] == 1 ? 1 : -1;
+    n += side * f.normalForce[e] * el.normal[e];
   }
   n.normalize();
   row.normal = onB.dot(n);
   row.tangential = (onB - row.normal * n).norm();
   row.sliding = r.contact.sliding > 0;
-  const ContactElementStore& el = w.contactElements();
   if (el.size() > 0) row.sB = el.fibreI[0] == 1 ? el.sI[0] : el.sJ[0];
   row.iterations = r.iterations;
   return row;

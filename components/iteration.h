@@ -1,0 +1,18 @@
+// Small stores that pass values between the driver and the systems of an iteration. No logic.
+#pragma once
+
+namespace fibra {
+
+// What the next run of a stage is for: written by the driver before it runs a stage.
+struct IterationInput {
+  double time = 0;          // pseudo-time the systems evaluate at (held DOFs, tools, loads)
+  bool withTangent = true;  // assemble the tangent K besides the residual r
+};
+
+// What the contact systems of one kind (fibre-fibre, fibre-tool) tell the nested loops.
+struct ContactLoopStats {
+  double normalTurn = 0;     // rad: largest turn of a normal at the last normal update
+  double penaltyChange = 0;  // largest |k_new / k_old - 1| at the last penalty adaptation
+};
+
+}  // namespace fibra

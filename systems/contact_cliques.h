@@ -1,0 +1,25 @@
+// Contact cliques: binds the fibre-fibre contact elements to the tangent's sparsity pattern.
+//
+// Reads  FibreStore (element nodes), ContactElementStore (sideI, sideJ: the two beam elements).
+// Writes ContactCliqueStore (keys, colours, each element's clique, elements grouped by clique);
+//        LinearSystem's pattern and scatter maps when the clique set changes.
+// A contact clique couples the DOFs of the two beam elements (eI, eJ) of a contact element; all
+// elements of one pair share it. The set of cliques only grows (a new pair rebuilds the
+// pattern, which re-runs CHOLMOD's analysis), so that contact elements that come and go between
+// iterations do not cost a new pattern each time, until more than half of it is unused (then it
+// is rebuilt from the current pairs: cliques > 2 x used + 64). Only then are the cliques
+// re-coloured: greedily in key order, a clique takes the first colour that none of the cliques
+// sharing one of its nodes has, so cliques of a colour scatter in parallel without conflicts.
+// Threading: keys and look-ups in parallel; sorting, colouring and grouping serial.
+#pragma once
+
+#include "components/contact.h"
+#include "components/contact_cliques.h"
+#include "components/linear_system.h"
+
+namespace fibra {
+
+void bindContactCliques(const FibreStore& fibres, const ContactElementStore& elements,
+                        ContactCliqueStore& cliques, LinearSystem& ls);
+
+}  // namespace fibra

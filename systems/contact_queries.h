@@ -1,0 +1,37 @@
+// Contact queries: quantities the nested loops and the reports read off the contact state,
+// fibre-fibre and fibre-tool elements alike. Pure functions over const stores, called directly
+// by the driver (they change no store, so they are not task-graph stages).
+//
+// stepLimit           the largest step length a in (0, 1] along dq (all DOFs) such that no
+//                     element closes deeper than stepPenetration p_max in one Newton step:
+//                     dg = N . (dx^I - dx^J), a = min over closing elements (dg < 0, g >
+//                     -allowed) of (g + allowed) / -dg, g the gap at the last evaluation.
+// deepestDetected     the largest penetration of the elements at their detection (or last
+//                     normal update), as a multiple of their zone's p_max.
+// fillContactReport   counts (zones, elements, active, sliding) and the largest penetration.
+#pragma once
+
+#include "components/contact_params.h"
+#include "components/contact_state.h"
+#include "core/report.h"
+
+#include <Eigen/Core>
+
+namespace fibra {
+
+// The report counts an element as sliding when its friction force is at least this share of
+// the Coulomb limit mu R_N (a re-detected element starts a little inside the limit: its
+// reversible slip is interpolated from the recorded history).
+inline constexpr double kSlidingShare = 0.99;
+inline bool sliding(double normalForce, const Vec3& gRev, double gMax) {
+  return normalForce > 0 && gRev.norm() >= kSlidingShare * gMax;
+}
+
+double stepLimit(const ContactParams& params, const ContactState& state, const Eigen::VectorXd& dq);
+
+double deepestDetected(const ContactState& state);
+
+// Fills zones, elements, toolElements, active, sliding, maxPenetration, maxPenetrationRatio.
+void fillContactReport(const ContactParams& params, const ContactState& state, ContactReport& r);
+
+}  // namespace fibra

@@ -1,0 +1,27 @@
+#include "systems/fibre_contact_law.h"
+
+#include "systems/contact_law.h"
+#include "systems/particle.h"
+
+#include <tbb/parallel_for.h>
+
+namespace fibra {
+
+void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const ZoneStore& zones,
+                           const ContactElementStore& el, ContactForceStore& out) {
+  resizeContactForces(out, el.size());
+  tbb::parallel_for(Index(0), el.size(), [&](Index e) {
+    const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
+    const Index z = el.zone[e];
+    const ContactLawParams law{zones.penalty[z], p.pRegRatio * zones.pMax[z], p.mu, p.gMax};
+    const ContactLawResult r = contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised);
+    out.gap[e] = r.gap;
+    out.normalForce[e] = r.normalForce;
+    out.force[e] = r.force;
+    out.gRev[e] = r.gRev;
+    out.slip[e] = r.slip;
+    out.stiffness[e] = r.stiffness;
+  });
+}
+
+}  // namespace fibra

@@ -1,0 +1,24 @@
+// Fibre-fibre contact law system: the force and stiffness of every fibre-fibre contact element at
+// the current state, for fixed particles and normals (paper section 4).
+//
+// Reads  FibreStore (q), ContactParams (p_reg / p_max, mu, g_T,max, symmetrised), ZoneStore
+//        (penalty and p_max per zone), ContactElementStore (particle weights, normal, friction
+//        reference).
+// Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element).
+// Per element: d = x^I - x^J from the particle weights, the law of systems/contact_law.h with the
+// zone's penalty k and p_reg = (p_reg / p_max) p_max,zone.
+// Threading: parallel over elements, each writing its own entries. Runs beside the beam
+// evaluation and the tool contact law: it writes nothing they read.
+#pragma once
+
+#include "components/contact.h"
+#include "components/contact_forces.h"
+#include "components/contact_params.h"
+
+namespace fibra {
+
+void evaluateFibreContacts(const FibreStore& fibres, const ContactParams& params,
+                           const ZoneStore& zones, const ContactElementStore& elements,
+                           ContactForceStore& forces);
+
+}  // namespace fibra

@@ -1,0 +1,54 @@
+#include "systems/tool_detection.h"
+
+#include "core/columns.h"
+#include "systems/particle.h"
+#include "systems/tool_geometry.h"
+
+#include <cmath>
+
+namespace fibra {
+namespace {
+
+// Particle facing the tool at (element, z): outline point in the direction -N.
+void addContact(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
+                const RigidMotion& m, double proximity, ToolContactStore& c) {
+  const Index f = fs.elementFibre[e];
+  const Section sec = sectionAt(fs, fs.q, {e, z});
+  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
+  const double reach = std::isfinite(proximity) ? proximity : std::max(fs.radius[f], 0.5 * elementLength(fs, f));
+  if (centre.distance > fs.radius[f] + reach) return;
+  const Eigen::Vector2d xi = outlinePoint(sec.g1, sec.g2, fs.radius[f], -centre.normal);
+  const Vec3 x = sec.x0 + xi(0) * sec.g1 + xi(1) * sec.g2;
+  const SurfacePoint sp = closestSurfacePoint(tools, tool, m, x);
+  const RigidMotion inverse{m.R.transpose(), m.centre, -m.R.transpose() * m.shift};
+  c.tool.push_back(tool);
+  c.zone.push_back(tool * fs.fibres() + f);
+  c.element.push_back(e);
+  c.z.push_back(z);
+  c.xi1.push_back(xi(0));
+  c.xi2.push_back(xi(1));
+  c.side.push_back(particleWeights(fs, e, z, xi(0), xi(1)));
+  c.normal.push_back(sp.normal);
+  c.gap.push_back(sp.distance);
+  c.toolPoint.push_back(inverse(sp.point));
+  c.d0.push_back(Vec3::Zero());
+  c.gRev0.push_back(Vec3::Zero());
+}
+
+}  // namespace
+
+void detectToolContacts(const FibreStore& fs, const ToolStore& tools, const ContactParams& params,
+                        const IterationInput& input, ToolContactStore& c) {
+  clearColumns(c);
+  for (Index t = 0; t < tools.size(); ++t) {
+    const RigidMotion m = toolMotion(tools, t, input.time);
+    for (Index e = 0; e < fs.elements(); ++e) {
+      const int order = fs.order[fs.elementFibre[e]];
+      const double zs[2] = {-0.5, 0.5};
+      for (int k = 0; k < order; ++k)
+        addContact(fs, tools, t, e, order == 2 ? zs[k] : 0.0, m, params.toolProximity, c);
+    }
+  }
+}
+
+}  // namespace fibra

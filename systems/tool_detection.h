@@ -1,0 +1,27 @@
+// Tool detection: the contact elements between the fibres and the rigid tools at the current
+// state (once per loop A pass, like fibre-fibre detection).
+//
+// Reads  FibreStore (q), ToolStore, ContactParams (tool proximity), IterationInput (time).
+// Writes ToolContactStore (overwritten; the friction reference is left to
+//        systems/friction_reference.h).
+// Along every fibre element, at the contact test locations (2 per quadratic element, at
+// z = -1/2 and 1/2; 1 per linear, at z = 0), a contact element is made when the centreline is
+// within R + Delta of the surface (Delta: the scene's proximity distance; by default
+// max(R, h/2), h the element length, so that a fibre approaching the tool has elements before it
+// arrives); its particle is the outline point facing the tool (paper Fig. 4 with the direction
+// -N), its normal N the surface normal at the closest point (towards the fibre), its tool point
+// the surface point under the particle, kept as a material point of the tool.
+// Serial, tools then elements in order: tool contacts are few.
+#pragma once
+
+#include "components/contact_params.h"
+#include "components/iteration.h"
+#include "components/tools.h"
+
+namespace fibra {
+
+void detectToolContacts(const FibreStore& fibres, const ToolStore& tools,
+                        const ContactParams& params, const IterationInput& input,
+                        ToolContactStore& contacts);
+
+}  // namespace fibra

@@ -1,0 +1,21 @@
+// Zone penalties carried by zone identity: every zone of a new detection gets the penalty k of
+// the zone it comes from (eq. 13 adapts k from call to call, so a zone keeps what it learned).
+//
+// Reads  FibreStore (radii, materials), MaterialStore (E), ContactParams (p_max, initial k), the
+//        previous call's ZoneStore (penalty), the new zones' `previous`.
+// Writes the new ZoneStore's penalty and pMax columns.
+//   k_z = k_previous(z) when the zone matches a previous one (its own id continued, or a part
+//         split off it: systems/zone_identity.h), else k0 = min(E_I R_I, E_J R_J) (or the
+//         scene's initial penalty); p_max,z = p_max.
+// Serial over zones (a copy per zone).
+#pragma once
+
+#include "components/contact.h"
+#include "components/contact_params.h"
+
+namespace fibra {
+
+void carryZonePenalties(const FibreStore& fibres, const MaterialStore& materials,
+                        const ContactParams& params, const ZoneStore& previous, ZoneStore& zones);
+
+}  // namespace fibra
