@@ -5,13 +5,16 @@
 
 #include "core/types.h"
 
+#include <array>
+
 namespace fibra {
 
 struct ParticleWeights {
   Index element = -1;
   Index firstNode = 0;  // the element's first node
   int nodes = 0;        // 2 or 3
-  double c[3][3] = {};  // c[a][f]: weight of node a's field f (0 x0, 1 g1, 2 g2), - or mm
+  std::array<std::array<double, 3>, 3> c{};  // c[a][f]: weight of node a's field f (0 x0,
+                                              // 1 g1, 2 g2), - or mm
 };
 
 }  // namespace fibra

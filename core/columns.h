@@ -130,11 +130,24 @@ void clearColumns(Store& store) {
   });
 }
 
-// Resizes every std::vector column to n entries (new entries value-initialised).
+// A zero of a column's entry type: T::Zero() for Eigen's fixed-size types (whose default
+// constructor leaves them uninitialised), T{} otherwise.
+template <class T>
+T zeroOf() {
+  if constexpr (requires { T::Zero(); })
+    return T::Zero();
+  else
+    return T{};
+}
+
+// Resizes every std::vector column to n entries; new entries are zero (zeroOf), so that a
+// column no system has written yet holds defined values.
 template <class Store>
 void resizeColumns(Store& store, std::size_t n) {
   forEachColumn(store, [n](auto& column) {
-    if constexpr (IsStdVector<std::remove_cvref_t<decltype(column)>>::value) column.resize(n);
+    using Column = std::remove_cvref_t<decltype(column)>;
+    if constexpr (IsStdVector<Column>::value)
+      column.resize(n, zeroOf<typename Column::value_type>());
   });
 }
 

@@ -28,13 +28,14 @@ NewtonResult cancelled(NewtonResult nr) {
   return nr;
 }
 
-// Stage detect at time t, with its statistics in the report; false when it was cancelled.
+// Stage detect at time t, with its statistics in the report; false when it was cancelled
+// (during the detection, or when asked right after it).
 bool detect(WorldState& w, double t, ContactReport& report) {
   runStage(w, w.pipeline.detect, t);
   ++report.detections;
   report.broadphaseRebuilds += w.contact.fibres && w.cache.broadphase.rebuilt;
   report.candidatePairs = Index(w.cache.broadphase.candidate.size());
-  return !w.cancel.requested();
+  return !w.cancel();
 }
 
 // Newton on the free DOFs with the elements and normals fixed.

@@ -20,7 +20,8 @@
 // Newton's steps are limited so that no element closes deeper than stepPenetration p_max in one
 // step (systems/contact_queries.h): without it the first step of an increment that brings fibres
 // into contact overshoots by millimetres and Newton then cycles between contact states.
-// Cancellation is checked after every stage (the detection checks it per chunk of work).
+// Cancellation is checked after every detection (and inside it, per chunk of work) and by
+// Newton between iterations.
 #pragma once
 
 #include "engine/world_state.h"

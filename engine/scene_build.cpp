@@ -177,6 +177,7 @@ void buildWorld(WorldState& w) {
                                                                      : int(tbb::task_arena::automatic));
     w.arena = w.ownArena.get();
   }
+  w.solver.setBlasThreads(w.arena->max_concurrency());
   buildMaterials(w);
   buildFibres(w);
   buildGroups(w);

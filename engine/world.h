@@ -8,8 +8,16 @@
 //
 // No global state: two worlds may run side by side in one process. Threading: step() runs its
 // parallel work in the caller's task arena when WorldDef::arena is set, else in an arena of
-// WorldDef::threads threads that the world owns. The callbacks are invoked on the thread that
-// called step(), never concurrently with each other; they must not call back into the world.
+// WorldDef::threads threads that the world owns. The sparse factorisations (CHOLMOD, UMFPACK)
+// spend their time in OpenBLAS, whose thread count is process-wide: the world sets it to its
+// arena's concurrency before each factorisation, so that BLAS does not oversubscribe the
+// cores the arena is given (two worlds running at once with different thread counts share that
+// setting: each factorisation runs with the count set last). Results are bitwise the same for
+// every thread count where no threaded BLAS is involved (Eigen's SparseLU, the default for
+// friction); CHOLMOD's and UMFPACK's BLAS may sum in another order with another thread count.
+// The callbacks are invoked on the thread that called step(), never concurrently with each
+// other; they must not call back into the world. The cancel callback is polled between Newton
+// iterations and, during detection, once per chunk of work.
 #pragma once
 
 #include "components/beam_store.h"
@@ -37,7 +45,8 @@ struct WorldDef {
   int threads = 0;                      // 0: all cores
   tbb::task_arena* arena = nullptr;     // the caller's arena (threads is then ignored)
   std::function<void(const Progress&)> progress;  // after every Newton iteration
-  std::function<bool()> cancel;         // polled between iterations; true stops the step
+  std::function<bool()> cancel;         // polled between iterations and per chunk of detection;
+                                        // true stops the step
   Trace* trace = nullptr;               // records the systems' spans when set (engine/trace.h)
   LuSolver luSolver = LuSolver::EigenSparseLu;  // non-symmetric tangents (friction); see
                                                 // docs/RESULTS.md for the measurement

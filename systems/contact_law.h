@@ -19,6 +19,7 @@
 #pragma once
 
 #include "components/contact_forces.h"
+#include "core/columns.h"
 #include "components/fibres.h"
 
 #include <Eigen/Core>
@@ -92,9 +93,6 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
 }
 
 // Sizes a force store for n elements (values are overwritten by the law systems).
-inline void resizeContactForces(ContactForceStore& f, Index n) {
-  f.gap.resize(n), f.normalForce.resize(n), f.force.resize(n), f.stiffness.resize(n);
-  f.gRev.resize(n), f.slip.resize(n);
-}
+inline void resizeContactForces(ContactForceStore& f, Index n) { resizeColumns(f, n); }
 
 }  // namespace fibra

@@ -5,6 +5,9 @@
 #include <Eigen/UmfPackSupport>
 #include <chrono>
 
+// OpenBLAS's thread count: a process-wide setting (cblas.h of the OpenBLAS package).
+extern "C" void openblas_set_num_threads(int);
+
 namespace fibra {
 namespace {
 
@@ -22,6 +25,7 @@ struct LinearSolver::Impl {
   Eigen::UmfPackLU<SparseMatrix> umfpack;
   Eigen::SparseLU<SparseMatrix> sparseLu;
   LuSolver luKind = LuSolver::EigenSparseLu;
+  int blasThreads = 0;
   Index lltRevision = -1, ldltRevision = -1, luRevision = -1;
   Active active = Active::None;
   LinearSolveStats stats;
@@ -56,8 +60,11 @@ void LinearSolver::setLuSolver(LuSolver lu) {
   impl_->luKind = lu;
 }
 
+void LinearSolver::setBlasThreads(int threads) { impl_->blasThreads = threads; }
+
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   Impl& m = *impl_;
+  if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
   m.active = Active::None;
   if (!ls.symmetric) {
     const bool umfpack = m.luKind == LuSolver::Umfpack;

@@ -7,8 +7,9 @@
 //   simplicial LDL^T for that call, and the report says so.
 // Non-symmetric K (friction): sparse LU with the same analysis reuse, by UMFPACK or by Eigen's
 //   SparseLU (LuSolver; which is faster is measured in bench/contact_mechanics.cpp).
-// Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). BLAS threads are
-// a process setting left to the program (the `fibra` program matches them to --threads).
+// Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
+// count is a process-wide setting: with setBlasThreads(n), every factorisation first sets it to
+// n (the world passes its own thread count); 0 leaves it alone.
 #pragma once
 
 #include "components/linear_system.h"
@@ -39,6 +40,7 @@ class LinearSolver {
 
   const LinearSolveStats& stats() const;
   void setLuSolver(LuSolver lu);  // for non-symmetric K; default EigenSparseLu
+  void setBlasThreads(int threads);  // > 0: OpenBLAS threads set before each factorisation
 
  private:
   struct Impl;

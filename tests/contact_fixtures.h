@@ -1,6 +1,8 @@
 // Small seeded fibre assemblies and helpers for the contact detection tests.
 #pragma once
 
+#include "store_bits.h"
+
 #include "bench/contact_assemblies.h"
 #include "components/contact.h"
 #include "components/contact_cache.h"
@@ -121,28 +123,7 @@ inline Eigen::VectorXd deformed(const FibreStore& fs, unsigned seed, double ampl
   return q;
 }
 
-template <class T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
-
-inline bool sameBits(const ZoneStore& a, const ZoneStore& b) {
-  return sameBits(a.fibreI, b.fibreI) && sameBits(a.fibreJ, b.fibreJ) && sameBits(a.sI1, b.sI1) &&
-         sameBits(a.sI2, b.sI2) && sameBits(a.sJ1, b.sJ1) && sameBits(a.sJ2, b.sJ2) &&
-         sameBits(a.minDistance, b.minDistance) && sameBits(a.testPoints, b.testPoints) &&
-         sameBits(a.id, b.id) && sameBits(a.previous, b.previous) &&
-         sameBits(a.intermediateLength, b.intermediateLength) &&
-         sameBits(a.firstElement, b.firstElement) && sameBits(a.elementCount, b.elementCount);
-}
-
-inline bool sameBits(const ContactElementStore& a, const ContactElementStore& b) {
-  return sameBits(a.zone, b.zone) && sameBits(a.zeta, b.zeta) && sameBits(a.fibreI, b.fibreI) &&
-         sameBits(a.sI, b.sI) && sameBits(a.xiI1, b.xiI1) && sameBits(a.xiI2, b.xiI2) &&
-         sameBits(a.fibreJ, b.fibreJ) && sameBits(a.sJ, b.sJ) && sameBits(a.xiJ1, b.xiJ1) &&
-         sameBits(a.xiJ2, b.xiJ2) && sameBits(a.normal, b.normal) && sameBits(a.gap, b.gap) &&
-         sameBits(a.theta, b.theta) && sameBits(a.crossWeight, b.crossWeight) &&
-         sameBits(a.fallback, b.fallback);
-}
+using test::sameBits;
 
 // The stores one detection call fills, and its report.
 struct Detected {

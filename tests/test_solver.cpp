@@ -104,6 +104,20 @@ TEST_CASE("the same scene gives bitwise the same state with 1 and 2 threads") {
   CHECK(one.residual().cwiseNotEqual(two.residual()).count() == 0);
 }
 
+extern "C" int openblas_get_num_threads();
+
+TEST_CASE("a world's thread setting also sets the BLAS threads of its factorisations") {
+  BeamSpec b;
+  SceneDef s = straightBeam(b, 1);
+  clampStart(s);
+  tipLoad(s, LoadKind::Force, Vec3(0, -0.01, 0));
+  for (int threads : {1, 2}) {
+    World w(s, {.threads = threads});
+    REQUIRE(w.step().status == StepStatus::Converged);
+    CHECK(openblas_get_num_threads() == threads);
+  }
+}
+
 TEST_CASE("an increment too large is rescued by cutbacks, and the report says so") {
   BeamSpec b;
   b.radius = 0.01;
