@@ -1,6 +1,7 @@
 // fibra, the command-line program: solves a scene file and writes its results.
 //
 //   fibra run SCENE.json --out DIR [--threads N] [--trace FILE]
+//   fibra describe SCENE.json     the stages of an iteration for the scene, as Markdown
 //
 // Order of work: the scene is loaded, validated and the World built before anything is
 // created, so bad input leaves no trace on disk (exit 2). Then DIR is created and filled:
@@ -48,7 +49,11 @@ extern "C" void onInterrupt(int) {
 
 const char* const kUsage =
     "usage: fibra run SCENE.json --out DIR [--threads N] [--trace FILE]\n"
+    "       fibra describe SCENE.json\n"
     "       fibra --help\n"
+    "\n"
+    "describe: prints the stages of an iteration for the scene (Markdown): every system, the\n"
+    "stores it reads and writes, the systems it waits for (docs/ARCHITECTURE.md).\n"
     "\n"
     "Solves the scene (format: docs/SCENE.md) and writes into DIR (created if needed):\n"
     "  result.pvd, result_NNNN.vtu  the fibres (centrelines and surfaces) for ParaView\n"
@@ -135,9 +140,11 @@ void printIncrement(const StepReport& r, const SceneDef& scene) {
   const ContactReport& c = r.contact;
   std::fprintf(stderr,
                "  contact: %d zones, %d + %d tool elements (%d active, %d sliding), max "
-               "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts\n",
+               "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts; detection: %d "
+               "passes, %d broadphase rebuilds, %d candidate pairs\n",
                c.zones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
-               c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts);
+               c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts, c.detections,
+               c.broadphaseRebuilds, c.candidatePairs);
 }
 
 // The run's output files, as the scene's output section asks.
@@ -264,6 +271,20 @@ int run(const Options& o) {
   return status;
 }
 
+// fibra describe SCENE.json: the scene's stages, built exactly as `run` builds them.
+int describe(int argc, char** argv) {
+  if (argc != 3 || std::string(argv[2]).starts_with("-"))
+    throw UsageError("describe: expected exactly one scene file");
+  try {
+    const World world(loadScene(argv[2]));
+    std::fputs(world.describe().c_str(), stdout);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "fibra: error: %s: %s\n", argv[2], e.what());
+    return kBadInput;
+  }
+  return kSolved;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -273,6 +294,7 @@ int main(int argc, char** argv) {
     return kSolved;
   }
   try {
+    if (command == "describe") return describe(argc, argv);
     if (command != "run")
       throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
     return run(parseRun(argc, argv));

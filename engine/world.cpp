@@ -27,6 +27,7 @@ const MaterialStore& World::materials() const { return s_->materials; }
 const GroupStore& World::groups() const { return s_->groups; }
 const ConstraintStore& World::constraints() const { return s_->constraints; }
 Eigen::VectorXd World::residual() const { return s_->system.r; }
+std::string World::describe() const { return describePipeline(s_->pipeline); }
 
 Vec3 World::toolReaction(Index tool) const {
   const ContactState& c = s_->committed;

@@ -79,6 +79,11 @@ class World {
   ContactSnapshot contactSnapshot() const;  // all contact elements, flattened for output
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
 
+  // The stages of an iteration for this scene as Markdown: per stage, every system with the
+  // stores it reads and writes (from its signature) and the systems it waits for, and a Mermaid
+  // graph (engine/pipeline.h; docs/ARCHITECTURE.md shows one).
+  std::string describe() const;
+
  private:
   std::unique_ptr<WorldState> s_;
 };

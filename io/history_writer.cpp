@@ -81,13 +81,16 @@ HistoryColumns contactColumns(const World& world) {
   return {{"contact.zones", "contact.elements", "contact.tool_elements", "contact.active",
            "contact.sliding", "contact.max_penetration", "contact.max_penetration_ratio",
            "contact.detection_loops", "contact.normal_loops", "contact.restarts",
-           "contact.stabilisation"},
+           "contact.stabilisation", "contact.detections", "contact.broadphase_rebuilds",
+           "contact.candidate_pairs"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             const ContactReport& c = r.contact;
             row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
                                    double(c.active), double(c.sliding), c.maxPenetration,
                                    c.maxPenetrationRatio, double(c.detectionLoops),
-                                   double(c.normalLoops), double(c.restarts), c.stabilisation});
+                                   double(c.normalLoops), double(c.restarts), c.stabilisation,
+                                   double(c.detections), double(c.broadphaseRebuilds),
+                                   double(c.candidatePairs)});
           }};
 }
 

@@ -50,7 +50,9 @@ HistoryColumns reactionColumns(const World& world);
 HistoryColumns toolColumns(const World& world);
 // With contact or tools: contact.zones, .elements, .tool_elements, .active, .sliding (counts),
 // .max_penetration (mm), .max_penetration_ratio (of p_max), .detection_loops, .normal_loops,
-// .restarts (loops A and B of the increment), .stabilisation (|stabilisation forces| / F_ref).
+// .restarts (loops A and B of the increment), .stabilisation (|stabilisation forces| / F_ref),
+// .detections, .broadphase_rebuilds (detection passes of the increment's last attempt, and those
+// that rebuilt the broadphase's candidate set), .candidate_pairs (of the last detection).
 HistoryColumns contactColumns(const World& world);
 // Per probe P: probe.P.x .y .z, the position of its node (mm).
 HistoryColumns probeColumns(const World& world);

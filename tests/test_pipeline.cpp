@@ -108,3 +108,19 @@ TEST_CASE("a scene pays only for what it needs: no contact, no tools, no stabili
   for (int i = 0; i < bare.pipeline.assemble.size(); ++i) names.insert(bare.pipeline.assemble.name(i));
   CHECK(names == std::set<std::string>{"beam evaluation", "clear", "beam scatter", "loads"});
 }
+
+TEST_CASE("the step report carries the detection statistics") {
+  World w(crossingBeams(0.01, 1e-4));
+  const StepReport first = w.step();
+  REQUIRE(first.status == StepStatus::Converged);
+  const ContactReport& c = first.contact;
+  // One detection opens the attempt and one follows every loop A pass but the last.
+  CHECK(c.restarts == 0);
+  CHECK(c.detections == c.detectionLoops);
+  CHECK(c.broadphaseRebuilds >= 1);  // the first detection builds the candidate set
+  CHECK(c.broadphaseRebuilds <= c.detections);
+  // Two crossing beams of 10 elements: the candidate pairs are element pairs of A and B whose
+  // boxes overlap near the crossing, at least one and far fewer than all 100.
+  CHECK(c.candidatePairs >= 1);
+  CHECK(c.candidatePairs < 100);
+}
