@@ -276,10 +276,14 @@ int describe(int argc, char** argv) {
   if (argc != 3 || std::string(argv[2]).starts_with("-"))
     throw UsageError("describe: expected exactly one scene file");
   try {
-    const World world(loadScene(argv[2]));
-    std::fputs(world.describe().c_str(), stdout);
+    const SceneDef scene = loadScene(argv[2]);  // its errors name the file
+    try {
+      std::fputs(World(scene).describe().c_str(), stdout);
+    } catch (const SceneError& e) {
+      throw SceneError(std::string(argv[2]) + ": " + e.what());
+    }
   } catch (const SceneError& e) {
-    std::fprintf(stderr, "fibra: error: %s: %s\n", argv[2], e.what());
+    std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kBadInput;
   }
   return kSolved;

@@ -65,6 +65,23 @@ TEST_CASE("fibra: a bad scene exits 2 with file, field and reason, and creates n
   CHECK_FALSE(fs::exists(scratch / "out"));
 }
 
+TEST_CASE("fibra describe prints the scene's stages; a bad scene or a bad call exits 2") {
+  TempDir scratch("cli_describe");
+  const RunResult r = runFibra({"describe", sourcePath("samples/roller_drag.json")}, scratch);
+  CHECK(r.status == 0);
+  CHECK(r.output.starts_with("### detect (loop A)\n"));
+  CHECK(r.output.find("| tool contact law |") != std::string::npos);
+  CHECK(r.output.find("fibre contact law") == std::string::npos);  // the roller scene has no
+                                                                   // fibre-fibre contact
+  const std::string bad = sourcePath("samples/bad/negative_radius.json");
+  const RunResult b = runFibra({"describe", bad}, scratch);
+  CHECK(b.status == 2);
+  CHECK(b.output == "fibra: error: " + bad + ": fibres[0].radius: must be > 0, got -1\n");
+  const RunResult none = runFibra({"describe"}, scratch);
+  CHECK(none.status == 2);
+  CHECK(none.output.starts_with("fibra: describe: expected exactly one scene file\n"));
+}
+
 TEST_CASE("fibra: usage errors exit 2 and create nothing, --help exits 0") {
   TempDir scratch("cli_usage");
   const std::string scene = sourcePath("samples/cantilever.json"), out = scratch / "out";
