@@ -1,7 +1,7 @@
 // Broadphase: candidate element pairs whose centrelines may come within Delta_prox.
 //
 // Reads  FibreStore (topology, radii), the state q (x0 of the nodes), ContactParams (reach,
-//        skin, self-contact).
+//        skin, self-contact), the cancel flag (per query chunk).
 // Writes CentrelineStore (every call: per element polynomial x0(z) and control-point box) and
 //        BroadphaseCache (candidate pairs, grid, skin reference; on rebuild only).
 // Threading: parallel over elements and grid buckets (oneTBB, the caller's arena). Bucket

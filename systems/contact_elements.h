@@ -1,7 +1,7 @@
 // Contact element generator: intermediate geometries (eq. 5) and contact elements (eqs. 6-9).
 //
 // Reads  FibreStore, the state q (x0, g1, g2), ContactParams, CentrelineStore, ZoneStore
-//        (fibres, intervals).
+//        (fibres, intervals), the cancel flag (per chunk of zones).
 // Writes ZoneStore::intermediateLength, firstElement, elementCount; ContactElementStore (zone,
 //        zeta, particles, normal, gap, theta, crossWeight (eqs. 10-11, systems/contact_normals.h),
 //        fallback bits; every other column is sized and left to the systems after it).

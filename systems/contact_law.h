@@ -95,4 +95,14 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
 // Sizes a force store for n elements (values are overwritten by the law systems).
 inline void resizeContactForces(ContactForceStore& f, Index n) { resizeColumns(f, n); }
 
+// Element e's entries of a force store.
+inline void storeContactLaw(const ContactLawResult& r, Index e, ContactForceStore& f) {
+  f.gap[e] = r.gap;
+  f.normalForce[e] = r.normalForce;
+  f.force[e] = r.force;
+  f.stiffness[e] = r.stiffness;
+  f.gRev[e] = r.gRev;
+  f.slip[e] = r.slip;
+}
+
 }  // namespace fibra

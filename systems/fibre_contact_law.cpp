@@ -15,12 +15,7 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
     const Index z = el.zone[e];
     const ContactLawParams law{zones.penalty[z], p.pRegRatio * zones.pMax[z], p.mu, p.gMax};
     const ContactLawResult r = contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised);
-    out.gap[e] = r.gap;
-    out.normalForce[e] = r.normalForce;
-    out.force[e] = r.force;
-    out.gRev[e] = r.gRev;
-    out.slip[e] = r.slip;
-    out.stiffness[e] = r.stiffness;
+    storeContactLaw(r, e, out);
   });
 }
 

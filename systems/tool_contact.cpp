@@ -19,12 +19,7 @@ void evaluateToolContacts(const FibreStore& fs, const ToolStore& tools, const To
     const Vec3 d = particlePosition(fs.q, c.side[i]) - motion[t](c.toolPoint[i]);
     const ContactLawParams law{zones.penalty[z], p.pRegRatio * zones.pMax[z], tools.friction[t], p.gMax};
     const ContactLawResult r = contactLaw(d, {c.normal[i], c.d0[i], c.gRev0[i]}, law, p.symmetrised);
-    out.gap[i] = r.gap;
-    out.normalForce[i] = r.normalForce;
-    out.force[i] = r.force;
-    out.gRev[i] = r.gRev;
-    out.slip[i] = r.slip;
-    out.stiffness[i] = r.stiffness;
+    storeContactLaw(r, i, out);
   });
 }
 

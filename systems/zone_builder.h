@@ -1,8 +1,10 @@
 // Zone builder: the proximity zones of every candidate fibre pair (paper eq. 4).
 //
-// Reads  FibreStore, ContactParams, CentrelineStore and the broadphase candidate pairs.
-// Writes ZoneStore (fibres, intervals, minimum distance, test-point count; id, previous and the
-//        element fields are left for zone identity and the element generator), ZoneCache scratch.
+// Reads  FibreStore, ContactParams, CentrelineStore and the broadphase candidate pairs, the
+//        cancel flag (per fibre chunk).
+// Writes ZoneStore (fibres, intervals, minimum distance, test-point count; id, previous, the
+//        penalties and the element fields are left for zone identity, systems/zone_penalty.h
+//        and the element generator), ZoneCache scratch.
 // Threading: parallel over fixed chunks of fibres I; each chunk writes its own zone list, the
 //        lists are concatenated in chunk order: zones come out sorted by (I, J, sI1) whatever
 //        the thread count.
