@@ -12,8 +12,10 @@ namespace fibra {
 enum class StepStatus {
   Converged,  // the increment converged; the world is at its end
   Failed,     // Newton failed even after the allowed cutbacks; the world is at the last
-              // converged state
-  Cancelled,  // the cancel callback asked to stop; the world is at the last converged state
+              // converged state (the increment's start, or the last sub-increment that
+              // converged after a cutback; StepReport::time says which)
+  Cancelled,  // the cancel callback asked to stop; the world is at the last converged state,
+              // as for Failed
   Finished    // there was nothing left to solve
 };
 

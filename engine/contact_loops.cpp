@@ -38,9 +38,10 @@ bool detect(WorldState& w, double t, ContactReport& report) {
   return !w.cancel();
 }
 
-// Newton on the free DOFs with the elements and normals fixed.
-NewtonResult newton(WorldState& w, double tTry, const NewtonSettings& settings,
-                    const NewtonCallbacks& callbacks, StepTimings& timings, int before) {
+// Newton on the free DOFs with the elements and normals fixed; iterations counted on from
+// `before`.
+NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonCallbacks& callbacks,
+                    StepTimings& timings, int before) {
   NewtonResult nr = solveNewton(w.fibres.q, w.system, w.solver, settings, callbacks, timings);
   nr.iterations += before;
   return nr;
@@ -64,7 +65,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     report.detectionLoops = a;
     for (int b = 1; b <= s.maxNormalLoops; ++b) {
       ++report.normalLoops;
-      nr = newton(w, tTry, settings, callbacks, timings, nr.iterations);
+      nr = newton(w, settings, callbacks, timings, nr.iterations);
       if (nr.outcome != NewtonOutcome::Converged) return nr;
       if (b == s.maxNormalLoops) break;
       runStage(w, w.pipeline.normals, tTry);
