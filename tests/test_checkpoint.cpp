@@ -1,9 +1,13 @@
 // The increment checkpoint: after a failed or cancelled increment the world is at its last
 // converged state — not only the positions, but the residual, the reactions, the tool reactions
-// and every contact element (fibre-fibre and fibre-tool) with its forces, bitwise.
+// and every contact element (fibre-fibre and fibre-tool) with its forces, bitwise; after a
+// cutback, the last converged state may be a sub-increment.
 #include "contact_scenes.h"
 
 #include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
 
 using namespace fibra;
 using namespace fibra::test;
@@ -112,4 +116,45 @@ TEST_CASE("a cancelled increment leaves residual, reactions and contact forces a
   REQUIRE(w.step().status == StepStatus::Cancelled);
   CHECK(iterationsOfStep2 >= 2);
   checkSame(observe(w), converged);
+}
+
+TEST_CASE("a failure after a converged sub-increment leaves the world at that sub-increment") {
+  // A cantilever whose end moment is small up to t = 0.5 and then jumps to a full roll-up: the
+  // whole increment fails, its first half converges, the second half fails again.
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  FibreDef f;
+  f.name = "beam";
+  f.material = "m";
+  f.radius = 0.01;
+  f.elements = 10;
+  f.geometry.points = {Vec3(0, 0, 0), Vec3(10, 0, 0)};
+  s.fibres.push_back(f);
+  BcDef clamp;
+  clamp.group = "beam.start";
+  s.bcs.push_back(clamp);
+  const double EI = 4000 * std::numbers::pi * std::pow(0.01, 4) / 4;
+  s.loads.push_back({LoadKind::Moment, "beam.end", Vec3(0, 0, 2 * std::numbers::pi * EI / 10),
+                     {{0, 0.5, 1}, {0, 0.01, 1}}});
+  StepDef st;
+  st.maxIterations = 8;
+  st.maxCutbacks = 1;
+  s.steps.push_back(st);
+  World w(s);
+  const StepReport r = w.step();
+  REQUIRE(r.status == StepStatus::Failed);
+  CHECK(r.cutbacks == 2);
+  CHECK(r.time == 0.5);
+  CHECK(w.time() == 0.5);
+  CHECK(w.fibres().q != w.fibres().qRef);
+  // The world shows a converged state: its residual vanishes on the free DOFs.
+  const Eigen::VectorXd residual = w.residual();
+  double free2 = 0, held2 = 0;
+  for (Index d = 0; d < residual.size(); ++d) (d < kNodeDofs ? held2 : free2) += residual(d) * residual(d);
+  CHECK(std::sqrt(free2) <= 1e-6 * std::sqrt(held2));
+  // Trying again starts from there and ends there.
+  const Eigen::VectorXd q = w.fibres().q;
+  CHECK(w.step().status == StepStatus::Failed);
+  CHECK(w.time() == 0.5);
+  CHECK(w.fibres().q == q);
 }
