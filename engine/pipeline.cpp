@@ -29,10 +29,17 @@
 namespace fibra {
 namespace {
 
+// Friction between fibres or with a tool: the friction reference and history are needed.
+bool hasFriction(const WorldState& w) {
+  bool any = w.contact.fibres && w.contact.mu > 0;
+  for (double mu : w.tools.friction) any = any || mu > 0;
+  return any;
+}
+
 void nameStores(WorldState& w, StoreNames& n) {
   n.add(w.materials, "materials");
   n.add(w.fibres, "fibres");
-  n.add(w.fibres.q, "fibres.q");
+  n.addPart(w.fibres.q, "fibres.q", w.fibres);
   n.add(w.beams, "beams");
   n.add(w.groups, "groups");
   n.add(w.loads, "loads");
@@ -90,7 +97,7 @@ void buildReference(WorldState& w, TaskGraph& g) {
 
 void buildDetectAndReference(WorldState& w, TaskGraph& g) {
   buildDetect(w, g);
-  buildReference(w, g);
+  if (hasFriction(w)) buildReference(w, g);
 }
 
 void buildNormals(WorldState& w, TaskGraph& g) {
@@ -111,8 +118,9 @@ void buildAdapt(WorldState& w, TaskGraph& g) {
   if (w.contact.tools)
     g.add("tool penalty adapter", adaptToolZonePenalties, w.contact, s.toolElements, s.toolForces,
           s.toolZones, w.toolStats);
-  g.add("friction history", recordFrictionHistory, w.fibres, s.elements, s.forces, s.toolElements,
-        s.toolForces, s.history);
+  if (hasFriction(w))
+    g.add("friction history", recordFrictionHistory, w.fibres, s.elements, s.forces,
+          s.toolElements, s.toolForces, s.history);
 }
 
 // Evaluations first (they write their own stores and run side by side), then the scatter into
@@ -172,7 +180,7 @@ void buildPipeline(WorldState& w) {
   nameStores(w, p.names);
   if (hasContact(w)) {
     buildDetectAndReference(w, p.detect);
-    buildReference(w, p.reference);
+    if (hasFriction(w)) buildReference(w, p.reference);
     buildNormals(w, p.normals);
     buildAdapt(w, p.adapt);
   }

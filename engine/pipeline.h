@@ -11,8 +11,8 @@
 //   assemble    one Newton iteration: beam evaluation, fibre-fibre and fibre-tool contact laws
 //               side by side; then the scatter into the linear system, in a fixed order
 //
-// A scene pays only for what it needs: systems of contact it does not have (fibre-fibre, tools)
-// and the stabilisation when it is off are not in its graphs. docs/ARCHITECTURE.md is generated
+// A scene pays only for what it needs: systems of contact it does not have (fibre-fibre, tools,
+// friction) and the stabilisation when it is off are not in its graphs. docs/ARCHITECTURE.md is generated
 // from these graphs (describePipeline).
 #pragma once
 

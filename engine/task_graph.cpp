@@ -13,6 +13,11 @@ std::string StoreNames::of(const void* address) const {
   return it == names_.end() ? std::string() : it->second;
 }
 
+const void* StoreNames::whole(const void* address) const {
+  const auto it = whole_.find(address);
+  return it == whole_.end() ? address : it->second;
+}
+
 struct TaskGraph::Impl {
   struct System {
     const char* name;
@@ -45,25 +50,27 @@ void TaskGraph::addSystem(const char* name, Access r, Access w, std::function<vo
 
 void TaskGraph::build() {
   Impl& m = *impl_;
+  const auto whole = [&m](const void* store) { return m.names ? m.names->whole(store) : store; };
   std::map<const void*, int> lastWriter;
   std::map<const void*, std::vector<int>> readersSinceWrite;
   for (int i = 0; i < int(m.systems.size()); ++i) {
     Impl::System& s = m.systems[i];
     std::vector<int>& pred = s.predecessors;
     pred.clear();
-    for (const void* store : s.reads)
-      if (auto it = lastWriter.find(store); it != lastWriter.end()) pred.push_back(it->second);
-    for (const void* store : s.writes) {
+    for (const void* part : s.reads)
+      if (auto it = lastWriter.find(whole(part)); it != lastWriter.end()) pred.push_back(it->second);
+    for (const void* part : s.writes) {
+      const void* store = whole(part);
       if (auto it = lastWriter.find(store); it != lastWriter.end()) pred.push_back(it->second);
       for (int r : readersSinceWrite[store]) pred.push_back(r);
     }
     std::sort(pred.begin(), pred.end());
     pred.erase(std::unique(pred.begin(), pred.end()), pred.end());
     pred.erase(std::remove(pred.begin(), pred.end(), i), pred.end());
-    for (const void* store : s.reads) readersSinceWrite[store].push_back(i);
-    for (const void* store : s.writes) {
-      lastWriter[store] = i;
-      readersSinceWrite[store].clear();
+    for (const void* part : s.reads) readersSinceWrite[whole(part)].push_back(i);
+    for (const void* part : s.writes) {
+      lastWriter[whole(part)] = i;
+      readersSinceWrite[whole(part)].clear();
     }
   }
 

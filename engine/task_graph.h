@@ -13,7 +13,9 @@
 // Edge rule, in insertion order: a system runs after the last writer of every store it reads or
 // writes (read-after-write, write-after-write) and after every reader of a store it writes since
 // that store's last write (write-after-read). Systems with no path between them run side by
-// side. A store is identified by its address. Each system runs inside a Span named after it.
+// side. A store is identified by its address; a named part of a store (StoreNames::addPart)
+// by the whole's. A system may read what it writes (a write is a read-modify-write). Each
+// system runs inside a Span named after it.
 #pragma once
 
 #include "core/trace.h"
@@ -39,11 +41,21 @@ class StoreNames {
   void add(const T& store, std::string name) {
     names_[static_cast<const void*>(&store)] = std::move(name);
   }
+  // A named part of a store (a column a system takes on its own, like fibres.q): edges treat
+  // an access to the part as an access to the whole.
+  template <class P, class T>
+  void addPart(const P& part, std::string name, const T& whole) {
+    add(part, std::move(name));
+    whole_[static_cast<const void*>(&part)] = static_cast<const void*>(&whole);
+  }
   // The name of the store at `address`, or "" when it has none.
   std::string of(const void* address) const;
+  // The store that `address` is part of (itself when it is a whole store).
+  const void* whole(const void* address) const;
 
  private:
   std::map<const void*, std::string> names_;
+  std::map<const void*, const void*> whole_;
 };
 
 class TaskGraph {

@@ -96,6 +96,9 @@ TEST_CASE("a scene pays only for what it needs: no contact, no tools, no stabili
   CHECK(g.find("tool contact scatter") < 0);
   CHECK(g.find("stabilisation") < 0);
   CHECK(w.pipeline.detect.find("tool detection") < 0);
+  CHECK(w.pipeline.detect.find("friction reference") < 0);  // frictionless
+  CHECK(w.pipeline.adapt.find("friction history") < 0);
+  CHECK(w.pipeline.reference.size() == 0);
 
   WorldState bare;
   bare.scene = crossingBeams(0.01, 1e-4);

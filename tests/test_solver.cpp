@@ -65,6 +65,10 @@ void writeA(Store& a) { a.value = 1; }
 void readAWriteB(const Store& a, Store& b) { b.value = a.value + 1; }
 void readAWriteC(const Store& a, Store& c) { c.value = a.value + 2; }
 void readBC(const Store& b, const Store& c, Store& d) { d.value = b.value * c.value; }
+struct Whole {
+  Store part;
+};
+void readWhole(const Whole& w, Store& out) { out.value = w.part.value; }
 
 }  // namespace
 
@@ -189,6 +193,17 @@ TEST_CASE("task graph edges follow the reads and writes of the systems' signatur
   CHECK(d.value == 2 * 3);
   Store unnamed;
   CHECK_THROWS_AS(g.add("unnamed", writeA, unnamed), std::logic_error);
+
+  // A part of a store bound on its own counts as the whole store for the edges.
+  Whole whole;
+  Store out;
+  names.add(whole, "whole"), names.addPart(whole.part, "whole.part", whole), names.add(out, "out");
+  TaskGraph h(&names);
+  h.add("read the whole", readWhole, whole, out);  // 0
+  h.add("write the part", writeA, whole.part);      // 1: after 0 (write after read)
+  h.build();
+  CHECK(h.predecessors(1) == std::vector<int>{0});
+  CHECK(h.writes(1) == std::vector<std::string>{"whole.part"});
 }
 
 TEST_CASE("a larger scene splits across threads and still gives bitwise the same state") {
