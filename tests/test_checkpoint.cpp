@@ -2,6 +2,7 @@
 // converged state — not only the positions, but the residual, the reactions, the tool reactions
 // and every contact element (fibre-fibre and fibre-tool) with its forces, bitwise; after a
 // cutback, the last converged state may be a sub-increment.
+#include "beam_fixtures.h"
 #include "contact_scenes.h"
 
 #include <doctest/doctest.h>
@@ -121,25 +122,14 @@ TEST_CASE("a cancelled increment leaves residual, reactions and contact forces a
 TEST_CASE("a failure after a converged sub-increment leaves the world at that sub-increment") {
   // A cantilever whose end moment is small up to t = 0.5 and then jumps to a full roll-up: the
   // whole increment fails, its first half converges, the second half fails again.
-  SceneDef s;
-  s.materials.push_back({"m", 4000, 0.3, 1, 1});
-  FibreDef f;
-  f.name = "beam";
-  f.material = "m";
-  f.radius = 0.01;
-  f.elements = 10;
-  f.geometry.points = {Vec3(0, 0, 0), Vec3(10, 0, 0)};
-  s.fibres.push_back(f);
-  BcDef clamp;
-  clamp.group = "beam.start";
-  s.bcs.push_back(clamp);
-  const double EI = 4000 * std::numbers::pi * std::pow(0.01, 4) / 4;
-  s.loads.push_back({LoadKind::Moment, "beam.end", Vec3(0, 0, 2 * std::numbers::pi * EI / 10),
-                     {{0, 0.5, 1}, {0, 0.01, 1}}});
-  StepDef st;
-  st.maxIterations = 8;
-  st.maxCutbacks = 1;
-  s.steps.push_back(st);
+  BeamSpec b;
+  b.radius = 0.01;
+  SceneDef s = straightBeam(b, 1);
+  clampStart(s);
+  tipLoad(s, LoadKind::Moment, Vec3(0, 0, 2 * std::numbers::pi * bendingStiffness(b) / b.length));
+  s.loads.back().table = {{0, 0.5, 1}, {0, 0.01, 1}};
+  s.steps[0].maxIterations = 8;
+  s.steps[0].maxCutbacks = 1;
   World w(s);
   const StepReport r = w.step();
   REQUIRE(r.status == StepStatus::Failed);
