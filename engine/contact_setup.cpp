@@ -85,7 +85,7 @@ void buildTools(const SceneDef& scene, const FibreStore& fs, const MaterialStore
     tools.direction.push_back(t.direction);
     tools.radius.push_back(t.radius);
     tools.inside.push_back(t.inside);
-    tools.motion.push_back({t.displacement, t.displacementTable, t.rotates, t.axis, t.centre, t.angle});
+    tools.motion.push_back(motionOf(t));
     tools.friction.push_back(t.friction);
     tools.pMax.push_back(std::isfinite(t.maxPenetration) ? t.maxPenetration : params.pMax);
     for (Index f = 0; f < fs.fibres(); ++f) {

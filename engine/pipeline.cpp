@@ -29,13 +29,6 @@
 namespace fibra {
 namespace {
 
-// Friction between fibres or with a tool: the friction reference and history are needed.
-bool hasFriction(const WorldState& w) {
-  bool any = w.contact.fibres && w.contact.mu > 0;
-  for (double mu : w.tools.friction) any = any || mu > 0;
-  return any;
-}
-
 void nameStores(WorldState& w, StoreNames& n) {
   n.add(w.materials, "materials");
   n.add(w.fibres, "fibres");

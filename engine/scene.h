@@ -174,6 +174,12 @@ struct StabilisationDef {
   std::vector<std::string> fibres;
 };
 
+// The prescribed motion of a boundary condition's held DOFs or of a tool (their motion fields).
+template <class Def>
+PrescribedMotion motionOf(const Def& d) {
+  return {d.displacement, d.displacementTable, d.rotates, d.axis, d.centre, d.angle};
+}
+
 struct SceneDef {
   std::string units = "mm-N-MPa";
   std::vector<MaterialDef> materials;

@@ -79,14 +79,6 @@ void buildGroups(WorldState& w) {
   }
 }
 
-}  // namespace
-
-PrescribedMotion motionOf(const BcDef& d) {
-  return {d.displacement, d.displacementTable, d.rotates, d.axis, d.centre, d.angle};
-}
-
-namespace {
-
 Index groupIndex(const GroupStore& g, const std::string& name, const std::string& path) {
   for (Index i = 0; i < g.size(); ++i)
     if (g.name[i] == name) return i;
@@ -202,9 +194,7 @@ void buildWorld(WorldState& w) {
 
   buildContact(w);
   buildStabilisation(w);
-  bool friction = w.scene.contact.enabled && w.scene.contact.friction > 0;
-  for (const ToolDef& t : w.scene.tools) friction = friction || t.friction > 0;
-  w.system.symmetric = !friction || w.contact.symmetrised;
+  w.system.symmetric = !hasFriction(w) || w.contact.symmetrised;
 
   numberEquations(w.fibres, w.constraints, w.system);
   w.arena->execute([&] { buildPattern(w.fibres, beamCliques(w.fibres), w.system); });

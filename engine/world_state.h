@@ -76,8 +76,13 @@ struct WorldState {
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }
 
-// The motion of a boundary condition's held DOFs.
-PrescribedMotion motionOf(const BcDef& def);
+// Friction between fibres or with a tool: a non-symmetric tangent, and the friction reference
+// and history stages.
+inline bool hasFriction(const WorldState& w) {
+  bool any = w.contact.fibres && w.contact.mu > 0;
+  for (double mu : w.tools.friction) any = any || mu > 0;
+  return any;
+}
 
 // Builds every store from a scene (throws SceneError on unresolved names or bad geometry).
 void buildWorld(WorldState& w);
