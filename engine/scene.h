@@ -95,6 +95,12 @@ struct LoadDef {
 };
 
 struct StepDef {
+  // Upper bounds the validation enforces: more iterations than this never helped a Newton
+  // attempt that the stagnation test did not stop; 50 bisections already cut an increment to
+  // 1e-15 of its size, where round-off of the pseudo-time takes over.
+  static constexpr int kMaxIterations = 10000;
+  static constexpr int kMaxCutbacks = 50;
+
   std::string name;
   double endTime = 1;              // pseudo-time at the end of the step (steps follow each other)
   int increments = 1;              // equal increments of pseudo-time

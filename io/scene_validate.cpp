@@ -50,6 +50,11 @@ void positiveOrDefault(double v, const std::string& path) {
 void atLeast(int v, int min, const std::string& path) {
   if (v < min) fail(path, "must be >= " + std::to_string(min) + ", got " + std::to_string(v));
 }
+void inRange(int v, int min, int max, const std::string& path) {
+  if (v < min || v > max)
+    fail(path, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
+                   std::to_string(v));
+}
 
 void checkName(const std::string& name, const std::string& path) {
   if (name.empty()) fail(path, "must not be empty");
@@ -304,10 +309,10 @@ void validateSteps(const SceneDef& s) {
                                 num(previous) + ", got " + num(st.endTime));
     previous = st.endTime;
     atLeast(st.increments, 1, p + ".increments");
-    atLeast(st.maxIterations, 1, p + ".max_iterations");
+    inRange(st.maxIterations, 1, StepDef::kMaxIterations, p + ".max_iterations");
     positive(st.forceTolerance, p + ".force_tolerance");
     positive(st.incrementTolerance, p + ".increment_tolerance");
-    atLeast(st.maxCutbacks, 0, p + ".max_cutbacks");
+    inRange(st.maxCutbacks, 0, StepDef::kMaxCutbacks, p + ".max_cutbacks");
     atLeast(st.outputEvery, 1, p + ".output_every");
   }
 }

@@ -95,6 +95,34 @@ struct Context {
   }
 };
 
+// Smallest residual of the records [from, to).
+double smallest(const std::vector<NewtonRecord>& h, int from, int to) {
+  double m = INFINITY;
+  for (int i = from; i < to; ++i) m = std::min(m, h[i].residual);
+  return m;
+}
+
+// The last 2p residuals repeat with period p (to 1e-6 relative), for some p <= maxPeriod;
+// returns p, or 0.
+int cyclePeriod(const std::vector<NewtonRecord>& h, int maxPeriod) {
+  const int n = int(h.size());
+  for (int p = 1; p <= maxPeriod && 2 * p <= n; ++p) {
+    bool repeats = true;
+    for (int i = 1; i <= p && repeats; ++i) {
+      const double a = h[n - i].residual, b = h[n - i - p].residual;
+      repeats = std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b));
+    }
+    if (repeats) return p;
+  }
+  return 0;
+}
+
+// No new smallest residual in the last w records.
+bool stuck(const std::vector<NewtonRecord>& h, int w) {
+  const int n = int(h.size());
+  return w > 0 && n > w && smallest(h, n - w, n) >= smallest(h, 0, n - w);
+}
+
 }  // namespace
 
 NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
@@ -136,6 +164,19 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
         res.message.clear();
         return res;
       }
+    }
+    const int period = cyclePeriod(res.history, settings.maxCyclePeriod);
+    if (period > 0 || stuck(res.history, settings.stagnationWindow)) {
+      char m[200];
+      if (period > 0)
+        std::snprintf(m, sizeof m, "stagnation: the residual repeats a cycle of %d iteration%s "
+                      "(last %.3g)", period, period > 1 ? "s" : "", residual);
+      else
+        std::snprintf(m, sizeof m, "stagnation: no smaller residual in %d iterations (smallest "
+                      "%.3g, last %.3g)", settings.stagnationWindow, smallest(res.history, 0, it),
+                      residual);
+      res.message = m;
+      return res;
     }
     if (residual > settings.divergence * std::max(first, 1.0)) {
       res.message = "diverging: residual grew from " + std::to_string(first) + " to " +

@@ -19,7 +19,12 @@
 //   needs, by one back-substitution with the factorisation at hand (no extra factorisation).
 // forceFloor keeps F_ref above the residual's roundoff (the world uses 1e-4 E A).
 // Fails (never silently): non-finite residual, singular tangent, relative residual beyond
-// `divergence` times max(its first value, 1), iteration limit, or cancellation. (Growth
+// `divergence` times max(its first value, 1), stagnation, iteration limit, or cancellation.
+// Stagnation, when a cutback serves better than more iterations: Newton cycles (the last 2p
+// residuals repeat with a period p <= maxCyclePeriod to 1e-6 relative: stick/slip in dense
+// frictional contact repeats exact cycles of up to 8 iterations), or it is stuck (no new
+// smallest residual in the last stagnationWindow iterations). A spike followed by a steady
+// decrease, or a slow steady decrease, is neither. (Growth
 // relative to the first value alone is normal here: after a small, accurate predictor the
 // first full step routinely multiplies the residual by 1e3-1e6 on slender fibres and still
 // converges quadratically.)
@@ -42,6 +47,9 @@ struct NewtonSettings {
   bool lineSearch = false;            // energy-slope line search (see above)
   int maxHalvings = 5;                // halvings of a step with a non-finite residual
   double divergence = 1e6;            // relative residual that aborts the attempt
+  int stagnationWindow = 20;          // iterations without a new smallest residual: stuck
+  int maxCyclePeriod = 8;             // longest cycle of residuals detected
+
 };
 
 enum class NewtonOutcome { Converged, Failed, Cancelled };

@@ -146,7 +146,11 @@ TEST_CASE("scene errors: out-of-range numbers") {
   CHECK(errorAfter([](Json& j) { j["steps"][0]["force_tolerance"] = 0; }) ==
         "s.json: steps[0].force_tolerance: must be > 0, got 0");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["max_cutbacks"] = -1; }) ==
-        "s.json: steps[0].max_cutbacks: must be >= 0, got -1");
+        "s.json: steps[0].max_cutbacks: must be in [0, 50], got -1");
+  CHECK(errorAfter([](Json& j) { j["steps"][0]["max_cutbacks"] = 2000; }) ==
+        "s.json: steps[0].max_cutbacks: must be in [0, 50], got 2000");
+  CHECK(errorAfter([](Json& j) { j["steps"][0]["max_iterations"] = 1000000000; }) ==
+        "s.json: steps[0].max_iterations: must be in [1, 10000], got 1000000000");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["end_time"] = 0; }) ==
         "s.json: steps[0].end_time: must be after the start, 0, got 0");
   CHECK(errorAfter([](Json& j) {
