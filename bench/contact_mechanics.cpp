@@ -5,7 +5,7 @@
 // tangent solved by CHOLMOD).
 //
 //   build/bench_contact_mechanics [--part all|solvers|pmax|loops|bundle] [--threads N]
-//                                 [--rings 1..3]
+//                                 [--rings 1..3] [--line-search on|off]
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "io/scene_loader.h"
@@ -150,12 +150,14 @@ void loopSweep(const WorldDef& def) {
 }
 
 int maxRings = 3;
+bool lineSearch = false;
 
 void bundles(const WorldDef& def) {
   std::printf("Bundles between two plane tools (squeezed 0.01 mm in 10 increments, mu 0.1)\n");
   for (auto [rings, elements] : {std::pair{1, 10}, std::pair{2, 20}, std::pair{3, 40}}) {
     if (rings > maxRings) break;
-    const SceneDef s = bundle(rings, elements, 0.01, 5e-4, 0.1);
+    SceneDef s = bundle(rings, elements, 0.01, 5e-4, 0.1);
+    for (StepDef& st : s.steps) st.lineSearch = lineSearch;
     const Run r = run(s, def, topForce);
     char name[64];
     std::snprintf(name, sizeof name, "%zu fibres x %d elements", s.fibres.size(), elements);
@@ -175,6 +177,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--part")) part = argv[i + 1];
     if (!std::strcmp(argv[i], "--threads")) def.threads = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--rings")) maxRings = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--line-search")) lineSearch = !std::strcmp(argv[i + 1], "on");
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   bench::setBlasThreads(def.threads);

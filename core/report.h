@@ -62,9 +62,11 @@ struct StepReport {
   int increment = 0;        // increment within the step, 1-based
   double time = 0;          // pseudo-time reached
   double loadFactor = 0;    // fraction of the step reached
-  int iterations = 0;       // Newton iterations of the accepted attempt
+  int iterations = 0;       // Newton iterations of the last converged attempt
   int totalIterations = 0;  // Newton iterations of all attempts (cutbacks included)
-  int cutbacks = 0;         // bisections needed
+  int cutbacks = 0;         // failed attempts (each cut the attempt size, engine/step_driver.cpp)
+  int subIncrements = 0;    // converged attempts that make up this increment
+  double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt
   double residual = 0;      // final relative residual
   std::vector<NewtonRecord> history;  // the accepted attempt's iterations
   StepTimings timings;

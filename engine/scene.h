@@ -96,7 +96,7 @@ struct LoadDef {
 
 struct StepDef {
   // Upper bounds the validation enforces: more iterations than this never helped a Newton
-  // attempt that the stagnation test did not stop; 50 bisections already cut an increment to
+  // attempt that the stagnation test did not stop; 50 cuts (halvings or more) bring an attempt to
   // 1e-15 of its size, where round-off of the pseudo-time takes over.
   static constexpr int kMaxIterations = 10000;
   static constexpr int kMaxCutbacks = 50;
@@ -107,8 +107,8 @@ struct StepDef {
   int maxIterations = 30;          // Newton iterations per increment before a cutback
   double forceTolerance = 1e-8;    // |r_free| <= tol * max(|f_ext|, |reactions|, 1e-4 E A)
   double incrementTolerance = 1e-10;  // remaining correction: |dx0| <= tol * R_max, |dg| <= tol
-  int maxCutbacks = 8;             // bisections of an increment before the step fails
-  bool lineSearch = false;         // energy-slope line search in Newton (systems/newton.h)
+  int maxCutbacks = 8;             // failed attempts of an increment before the step fails
+  bool lineSearch = false;         // non-monotone line search in Newton (systems/newton.h)
   int outputEvery = 1;             // write output every n converged increments (and the last)
 };
 

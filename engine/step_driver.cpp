@@ -3,9 +3,11 @@
 //   2. attempt: trial contact state = committed; held DOFs moved to their targets; Newton on the
 //      free DOFs (with contact: the nested loops of engine/contact_loops.h);
 //   3. converged: commit (swap trial and committed, keep q, r, f_ext) and go on to the target;
-//      failed: discard the trial (back to the last converged q, r, f_ext), bisect the remaining
-//      interval (bounded by the step's maxCutbacks) and retry; never accept a non-converged
-//      state;
+//      failed: discard the trial (back to the last converged q, r, f_ext), cut the attempt's
+//      size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
+//      state. The attempt size adapts (nextIncrement): it grows back after easy attempts, up
+//      to the nominal increment, and carries over to the next increment of the step, whose
+//      end is always reached exactly (frames and history rows stay on the nominal times);
 //   4. at the target: time, increment and step counters.
 // After a failure or a cancellation the world is at its last converged state: the start of the
 // increment, or the last sub-increment that converged after a cutback.
@@ -43,6 +45,18 @@ NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   settings.lengthScale = w.lengthScale;
   settings.lineSearch = st.lineSearch;
   return settings;
+}
+
+// Size of the next attempt after this one (pseudo-time): doubled after an attempt that
+// converged in at most half the iteration limit, up to the nominal increment; halved after a
+// failure, quartered when no iteration came within the reference force (smallest relative
+// residual above 1: far outside Newton's basin). Factors of 2 keep every size a power-of-two
+// fraction of the nominal increment.
+double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonResult& nr) {
+  if (nr.outcome == NewtonOutcome::Converged)
+    return 2 * nr.iterations <= st.maxIterations ? std::min(2 * dt, nominal) : dt;
+  if (nr.outcome == NewtonOutcome::Cancelled) return dt;
+  return dt * (nr.smallest > 1 ? 0.25 : 0.5);
 }
 
 // The trial starts from the last converged state.
@@ -117,19 +131,24 @@ StepReport advance(WorldState& w) {
   rep.increment = w.increment + 1;
   w.cancel.arm(w.def.cancel);
 
-  double dt = t1 - w.time;
+  const double nominal = (st.endTime - tStart) / st.increments;
+  if (w.increment == 0 || !(w.dt > 0)) w.dt = nominal;
   while (w.time < t1) {
-    const double tTry = w.time + dt >= t1 - 1e-12 * std::abs(t1) ? t1 : w.time + dt;
+    const double tTry = w.time + w.dt >= t1 - 1e-9 * nominal ? t1 : w.time + w.dt;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep.timings, rep.contact);
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {
+      const double size = tTry - w.time;
+      rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
       commit(w, tTry);
       rep.iterations = nr.iterations;
       rep.residual = nr.residual;
+      w.dt = nextIncrement(w.dt, nominal, st, nr);
       continue;
     }
     discard(w);
+    w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled || ++rep.cutbacks > st.maxCutbacks) {
       rep.status = cancelled ? StepStatus::Cancelled : StepStatus::Failed;
@@ -142,7 +161,6 @@ StepReport advance(WorldState& w) {
     }
     rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
                    std::to_string(tTry) + ": " + nr.message;
-    dt *= 0.5;
   }
 
   if (++w.increment == st.increments) {

@@ -72,6 +72,8 @@ struct WorldState {
   double time = 0;           // pseudo-time of the converged state
   int step = 0;              // scene step of the next increment
   int increment = 0;         // increments of `step` already converged
+  double dt = 0;             // pseudo-time of the next attempt (0: the step's nominal increment)
+  int easy = 0;              // easy converged attempts since dt last changed
 };
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }

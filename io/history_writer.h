@@ -39,8 +39,10 @@ struct HistoryColumns {
 };
 
 // time, step (1-based), increment (1-based within the step), load_factor (fraction of the
-// step), iterations (Newton, accepted attempt), total_iterations (all attempts), cutbacks,
-// residual (relative), wall_s (seconds of the increment).
+// step), iterations (Newton, last converged attempt), total_iterations (all attempts), cutbacks
+// (failed attempts), sub_increments (converged attempts that make up the increment),
+// smallest_increment (pseudo-time size of the smallest of them), residual (relative), wall_s
+// (seconds of the increment).
 HistoryColumns incrementColumns();
 // Per boundary condition: reaction.G.fx .fy .fz (N) and .mx .my .mz (N mm, about
 // output.moment_point), World::reaction: what the held DOFs exert on the fibres, balancing the

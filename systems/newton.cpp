@@ -61,9 +61,6 @@ struct Context {
     return assemble(withTangent);
   }
 
-  // Step length: the full Newton step, halved while the residual is not finite; with the
-  // optional line search, regula falsi (Illinois) on the energy slope s(a) = dq . r_f(q0 + a dq)
-  // until |s| <= 0.5 |s(0)|, at most 6 trials. Leaves ls assembled with the tangent at q.
   // The step direction on every DOF (zero on the held ones).
   Eigen::VectorXd fullStep() const {
     Eigen::VectorXd d = Eigen::VectorXd::Zero(q.size());
@@ -71,27 +68,23 @@ struct Context {
     return d;
   }
 
-  std::pair<double, double> step() {
+  // Step length a and the relative residual at q0 + a dq: the full Newton step (within the
+  // contact step limit), halved while the residual is not finite. With the line search and a
+  // reference `accept` (kappa times the largest of the last residuals, see newton.h): halved
+  // while the residual exceeds it, at most maxHalvings times, keeping the trial with the
+  // smallest residual. Leaves ls assembled with the tangent at the chosen q.
+  std::pair<double, double> step(double accept) {
     const Eigen::VectorXd q0 = q;
-    const double s0 = dq.dot(rf);
     double a = cb.stepLimit ? std::clamp(cb.stepLimit(fullStep()), 1e-6, 1.0) : 1.0;
     double res = moveTo(q0, a, true);
     for (int k = 0; k < settings.maxHalvings && !std::isfinite(res); ++k) res = moveTo(q0, a *= 0.5, true);
-    double s = dq.dot(rf);
-    if (!settings.lineSearch || !std::isfinite(res) || s0 >= 0 || s <= 0.5 * std::abs(s0)) return {a, res};
-    double lo = 0, slo = s0, hi = a, shi = s;
-    for (int k = 0, side = 0; k < 6; ++k) {
-      a = std::clamp((lo * shi - hi * slo) / (shi - slo), lo + 0.02 * (hi - lo), hi - 0.02 * (hi - lo));
-      res = moveTo(q0, a, false);
-      s = dq.dot(rf);
-      if (std::abs(s) <= 0.5 * std::abs(s0)) break;
-      if (s > 0) {
-        hi = a, shi = s, slo *= side == -1 ? 0.5 : 1, side = -1;
-      } else {
-        lo = a, slo = s, shi *= side == 1 ? 0.5 : 1, side = 1;
-      }
+    if (!settings.lineSearch || !std::isfinite(res) || res <= accept) return {a, res};
+    double best = res, bestA = a;
+    for (int k = 0; k < settings.maxHalvings && !(res <= accept); ++k) {
+      res = moveTo(q0, a *= 0.5, false);
+      if (res < best) best = res, bestA = a;
     }
-    return {a, assemble(true)};
+    return {bestA, moveTo(q0, bestA, true)};
   }
 };
 
@@ -123,6 +116,33 @@ bool stuck(const std::vector<NewtonRecord>& h, int w) {
   return w > 0 && n > w && smallest(h, n - w, n) >= smallest(h, 0, n - w);
 }
 
+// The line search's acceptance bound for the next step: kappa times the largest of the last
+// `window` relative residuals (the current one included); none for the first step of a pass.
+double acceptance(const std::vector<NewtonRecord>& h, double current, const NewtonSettings& s) {
+  if (h.empty()) return INFINITY;
+  double m = current;
+  for (int k = 1; k < s.lineSearchWindow && k <= int(h.size()); ++k) m = std::max(m, h[h.size() - k].residual);
+  return s.lineSearchFactor * m;
+}
+
+// Why the attempt stagnates, or "" when it does not.
+std::string stagnation(const std::vector<NewtonRecord>& h, const NewtonSettings& s) {
+  char m[200];
+  const int n = int(h.size());
+  const double last = n ? h.back().residual : 0;
+  if (const int p = cyclePeriod(h, s.maxCyclePeriod); p > 0) {
+    std::snprintf(m, sizeof m, "stagnation: the residual repeats a cycle of %d iteration%s (last %.3g)",
+                  p, p > 1 ? "s" : "", last);
+    return m;
+  }
+  const bool far = n && smallest(h, 0, n) > 1;
+  const int w = far ? s.farStagnationWindow : s.stagnationWindow;
+  if (!stuck(h, w)) return "";
+  std::snprintf(m, sizeof m, "stagnation: no smaller residual in %d iterations (smallest %.3g%s, last %.3g)",
+                w, smallest(h, 0, n), far ? ", above the reference force" : "", last);
+  return m;
+}
+
 }  // namespace
 
 NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
@@ -148,9 +168,10 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     if (!ok) return res;
     c.solve(-c.rf, c.dq);
 
-    const auto [alpha, residual] = c.step();
+    const auto [alpha, residual] = c.step(acceptance(res.history, res.residual, settings));
     res.iterations = it;
     res.residual = residual;
+    res.smallest = std::min(res.smallest, residual);
     res.history.push_back({residual, alpha * c.scaledMax(c.dq), alpha});
     if (cb.progress) cb.progress(it, residual);
     if (!std::isfinite(residual)) {
@@ -165,19 +186,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
         return res;
       }
     }
-    const int period = cyclePeriod(res.history, settings.maxCyclePeriod);
-    if (period > 0 || stuck(res.history, settings.stagnationWindow)) {
-      char m[200];
-      if (period > 0)
-        std::snprintf(m, sizeof m, "stagnation: the residual repeats a cycle of %d iteration%s "
-                      "(last %.3g)", period, period > 1 ? "s" : "", residual);
-      else
-        std::snprintf(m, sizeof m, "stagnation: no smaller residual in %d iterations (smallest "
-                      "%.3g, last %.3g)", settings.stagnationWindow, smallest(res.history, 0, it),
-                      residual);
-      res.message = m;
-      return res;
-    }
+    if (res.message = stagnation(res.history, settings); !res.message.empty()) return res;
     if (residual > settings.divergence * std::max(first, 1.0)) {
       res.message = "diverging: residual grew from " + std::to_string(first) + " to " +
                     std::to_string(residual);

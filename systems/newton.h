@@ -4,13 +4,19 @@
 // Reads/writes the state q (free DOFs), LinearSystem (through the assemble callback, which
 // fills r, fext and, when asked, K at the current q), and the LinearSolver.
 //
-// Iteration: K dq = -r_f; q += alpha dq with alpha = 1, halved only while the residual is not
-// finite. Damping by the energy slope or the residual norm is measured to hurt here (4 against
-// 7 Newton iterations for a small cantilever load, 8 against 24 for a 1/20 roll-up increment:
-// the straight Newton line leaves the rotation manifold to second order, and the stiff axial
-// and director-stretch modes then dominate both merits although the full step is right), so
-// the energy line search (regula falsi on s(a) = dq . r_f(q + a dq), |s| <= 0.5 |s(0)|) is an
-// option, off by default; cutbacks of the increment are the globalisation.
+// Iteration: K dq = -r_f; q += alpha dq with alpha = 1 (within the contact step limit), halved
+// while the residual is not finite. Damping by the energy slope or the residual norm is
+// measured to hurt here: the straight Newton line leaves the rotation manifold to second
+// order, and the stiff axial and director-stretch modes then dominate both merits although the
+// full step is right; plain Newton's residual routinely jumps by 10-1000x every other
+// iteration on large rotations and still converges. So the optional line search is
+// non-monotone (after Grippo, Lampariello and Lucidi, SIAM J. Numer. Anal. 23, 1986, on the
+// relative residual): the step is accepted when |r_f(q + a dq)| <= kappa * max of the last M
+// relative residuals (kappa = lineSearchFactor, M = lineSearchWindow), the first step of a
+// pass always (after a load increment the predictor's residual is small and the first full
+// step multiplies it by 1e3-1e6); otherwise a is halved, at most maxHalvings times, and the
+// trial with the smallest residual is taken. Cutbacks of the increment remain the
+// globalisation.
 // Norms: director forces (N mm) are divided by lengthScale, position increments too, so every
 // component reads as a force (N) or a dimensionless increment.
 // Converged when, after an iteration,
@@ -23,8 +29,9 @@
 // Stagnation, when a cutback serves better than more iterations: Newton cycles (the last 2p
 // residuals repeat with a period p <= maxCyclePeriod to 1e-6 relative: stick/slip in dense
 // frictional contact repeats exact cycles of up to 8 iterations), or it is stuck (no new
-// smallest residual in the last stagnationWindow iterations). A spike followed by a steady
-// decrease, or a slow steady decrease, is neither. (Growth
+// smallest residual in the last stagnationWindow iterations, farStagnationWindow while no
+// residual has come below 1, i.e. the attempt is still off by more than the reference force).
+// A spike followed by a steady decrease, or a slow steady decrease, is neither. (Growth
 // relative to the first value alone is normal here: after a small, accurate predictor the
 // first full step routinely multiplies the residual by 1e3-1e6 on slender fibres and still
 // converges quadratically.)
@@ -44,12 +51,14 @@ struct NewtonSettings {
   double incrementTolerance = 1e-10;  // relative to lengthScale (positions) or absolute (directors)
   double forceFloor = 1e-12;          // N: F_ref floor for unloaded states
   double lengthScale = 1;             // mm
-  bool lineSearch = false;            // energy-slope line search (see above)
-  int maxHalvings = 5;                // halvings of a step with a non-finite residual
+  bool lineSearch = false;            // non-monotone residual line search (see above)
+  int lineSearchWindow = 5;           // M: residuals the acceptance bound looks back on
+  double lineSearchFactor = 3;        // kappa: accepted growth over their largest
+  int maxHalvings = 5;                // halvings of a step (non-finite residual, line search)
   double divergence = 1e6;            // relative residual that aborts the attempt
   int stagnationWindow = 20;          // iterations without a new smallest residual: stuck
+  int farStagnationWindow = 10;       // the same while every residual is above 1 (F_ref)
   int maxCyclePeriod = 8;             // longest cycle of residuals detected
-
 };
 
 enum class NewtonOutcome { Converged, Failed, Cancelled };
@@ -58,6 +67,7 @@ struct NewtonResult {
   NewtonOutcome outcome = NewtonOutcome::Failed;
   int iterations = 0;
   double residual = 0;  // final relative residual
+  double smallest = INFINITY;  // smallest relative residual after an iteration
   std::vector<NewtonRecord> history;
   std::string message;
 };

@@ -249,6 +249,8 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
                                            "iterations",
                                            "total_iterations",
                                            "cutbacks",
+                                           "sub_increments",
+                                           "smallest_increment",
                                            "residual",
                                            "wall_s",
                                            "reaction.beam.start.fx",
