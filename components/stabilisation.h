@@ -1,5 +1,5 @@
-// Stabilisation store: the springs that hold fibres held only by contact (DESIGN.md 1.4,
-// systems/stabilisation.h). No logic here.
+// Stabilisation store: the springs that hold fibres held only by contact (DESIGN.md 1.4), and
+// the viscous continuation of a step (systems/stabilisation.h). No logic here.
 #pragma once
 
 #include "core/types.h"
@@ -15,7 +15,10 @@ struct StabilisationStore {
   // --- per DOF ---
   Eigen::VectorXd qStart;         // the state at the start of the increment (mm, -)
 
-  bool active = false;            // some node has k > 0
+  // --- per attempt ---
+  double viscous = 0;             // c / dt: the step's damping over the attempt's size, N/mm
+
+  bool active = false;            // some node has k > 0, or some step has damping
 };
 
 }  // namespace fibra

@@ -68,6 +68,7 @@ struct StepReport {
   int subIncrements = 0;    // converged attempts that make up this increment
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt
   double residual = 0;      // final relative residual
+  double viscousForce = 0;  // |viscous continuation force on the free DOFs| / F_ref at the end
   std::vector<NewtonRecord> history;  // the accepted attempt's iterations
   StepTimings timings;
   ContactReport contact;    // when the scene has contact or tools

@@ -109,6 +109,7 @@ struct StepDef {
   double incrementTolerance = 1e-10;  // remaining correction: |dx0| <= tol * R_max, |dg| <= tol
   int maxCutbacks = 8;             // failed attempts of an increment before the step fails
   bool lineSearch = false;         // non-monotone line search in Newton (systems/newton.h)
+  double damping = 0;              // viscous continuation c, N/mm x pseudo-time per node (0: off)
   int outputEvery = 1;             // write output every n converged increments (and the last)
 };
 

@@ -27,13 +27,18 @@ double stepStart(const WorldState& w, int step) {
   return step == 0 ? 0.0 : w.scene.steps[step - 1].endTime;
 }
 
-// |stabilisation force on the free DOFs| / F_ref at the converged state.
-double stabilisationEffect(const WorldState& w) {
-  const Eigen::VectorXd f = stabilisationForce(w.fibres, w.stabilisation);
-  double free2 = 0;
-  for (Index i = 0; i < w.system.freeCount; ++i) free2 += std::pow(f(w.system.dofOf[i]), 2);
-  const double ref = std::max(w.system.fext.norm(), w.forceFloor);
-  return std::sqrt(free2) / ref;
+// |f on the free DOFs| / F_ref at the converged state, F_ref = max(|f_ext|, |reactions|, floor)
+// as in Newton's test (director components divided by the length scale).
+double relativeFree(const WorldState& w, const Eigen::VectorXd& f) {
+  const LinearSystem& ls = w.system;
+  double free2 = 0, ext2 = 0, held2 = 0;
+  for (Index d = 0; d < ls.r.size(); ++d) {
+    const double w2 = d % kNodeDofs < 3 ? 1.0 : 1 / (w.lengthScale * w.lengthScale);
+    ext2 += w2 * ls.fext(d) * ls.fext(d);
+    if (ls.equation[d] >= 0) free2 += w2 * f(d) * f(d);
+    else held2 += w2 * ls.r(d) * ls.r(d);
+  }
+  return std::sqrt(free2) / std::max({std::sqrt(ext2), std::sqrt(held2), w.forceFloor});
 }
 
 NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
@@ -59,10 +64,11 @@ double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonR
   return dt * (nr.smallest > 1 ? 0.25 : 0.5);
 }
 
-// The trial starts from the last converged state.
-void beginAttempt(WorldState& w) {
+// The trial starts from the last converged state; the continuation's c/dt for its size.
+void beginAttempt(WorldState& w, const StepDef& st, double size) {
   if (hasContact(w)) w.trial = w.committed;
   w.stabilisation.qStart = w.fibres.q;
+  w.stabilisation.viscous = st.damping / size;
 }
 
 // The attempt converged: its state becomes the last converged one.
@@ -82,8 +88,10 @@ void discard(WorldState& w) {
 }
 
 NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStart,
-                     StepTimings& timings, ContactReport& contact) {
-  beginAttempt(w);
+                     StepReport& rep) {
+  StepTimings& timings = rep.timings;
+  ContactReport& contact = rep.contact;
+  beginAttempt(w, st, tTry - w.time);
   NewtonCallbacks cb;
   cb.assemble = [&w, tTry](bool withTangent) { runStage(w, w.pipeline.assemble, tTry, withTangent); };
   cb.cancel = [&w] { return w.cancel(); };
@@ -103,7 +111,10 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
       r = solveNewton(w.fibres.q, w.system, w.solver, settings, cb, timings);
     }
   });
-  if (r.outcome == NewtonOutcome::Converged) contact.stabilisation = stabilisationEffect(w);
+  if (r.outcome == NewtonOutcome::Converged && w.stabilisation.active) {
+    contact.stabilisation = relativeFree(w, springForce(w.fibres, w.stabilisation));
+    rep.viscousForce = relativeFree(w, viscousForce(w.fibres, w.stabilisation));
+  }
   return r;
 }
 
@@ -135,7 +146,7 @@ StepReport advance(WorldState& w) {
   if (w.increment == 0 || !(w.dt > 0)) w.dt = nominal;
   while (w.time < t1) {
     const double tTry = w.time + w.dt >= t1 - 1e-9 * nominal ? t1 : w.time + w.dt;
-    const NewtonResult nr = attempt(w, st, tTry, tStart, rep.timings, rep.contact);
+    const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {

@@ -95,6 +95,15 @@ HistoryColumns contactColumns(const World& world) {
           }};
 }
 
+HistoryColumns continuationColumns(const World& world) {
+  const std::vector<StepDef>& steps = world.scene().steps;
+  if (std::none_of(steps.begin(), steps.end(), [](const StepDef& s) { return s.damping > 0; }))
+    return {{}, [](const World&, const StepReport&, std::vector<double>&) {}};
+  return {{"viscous_force"}, [](const World&, const StepReport& r, std::vector<double>& row) {
+            row.push_back(r.viscousForce);
+          }};
+}
+
 HistoryColumns probeColumns(const World& world) {
   HistoryColumns c;
   for (const ProbeDef& p : world.scene().output.probes)
@@ -107,8 +116,8 @@ HistoryColumns probeColumns(const World& world) {
 }
 
 std::vector<HistoryColumns> standardHistoryColumns(const World& world) {
-  return {incrementColumns(), reactionColumns(world), toolColumns(world), contactColumns(world),
-          probeColumns(world)};
+  return {incrementColumns(),    reactionColumns(world),     toolColumns(world),
+          contactColumns(world), continuationColumns(world), probeColumns(world)};
 }
 
 HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns)

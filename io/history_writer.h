@@ -56,6 +56,10 @@ HistoryColumns toolColumns(const World& world);
 // .detections, .broadphase_rebuilds (detection passes of the increment's last attempt, and those
 // that rebuilt the broadphase's candidate set), .candidate_pairs (of the last detection).
 HistoryColumns contactColumns(const World& world);
+// When some step has damping: viscous_force, |the continuation's force on the free DOFs| / F_ref
+// at the end of the increment (how far the state is from static equilibrium; 0 in steps
+// without damping).
+HistoryColumns continuationColumns(const World& world);
 // Per probe P: probe.P.x .y .z, the position of its node (mm).
 HistoryColumns probeColumns(const World& world);
 // All of the above, in that order.

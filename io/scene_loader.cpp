@@ -109,7 +109,7 @@ GroupDef readGroup(const Json& j, const std::string& path) {
 StepDef readStep(const Json& j, const std::string& path) {
   const Fields f(j, path,
                  {"name", "end_time", "increments", "max_iterations", "force_tolerance",
-                  "increment_tolerance", "max_cutbacks", "line_search", "output_every"});
+                  "increment_tolerance", "max_cutbacks", "line_search", "damping", "output_every"});
   StepDef s;
   s.name = f.string("name", s.name);
   s.endTime = f.number("end_time", s.endTime);
@@ -119,6 +119,7 @@ StepDef readStep(const Json& j, const std::string& path) {
   s.incrementTolerance = f.number("increment_tolerance", s.incrementTolerance);
   s.maxCutbacks = f.integer("max_cutbacks", s.maxCutbacks);
   s.lineSearch = f.boolean("line_search", s.lineSearch);
+  s.damping = f.number("damping", s.damping);
   s.outputEvery = f.integer("output_every", s.outputEvery);
   return s;
 }

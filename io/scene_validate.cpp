@@ -313,6 +313,7 @@ void validateSteps(const SceneDef& s) {
     positive(st.forceTolerance, p + ".force_tolerance");
     positive(st.incrementTolerance, p + ".increment_tolerance");
     inRange(st.maxCutbacks, 0, StepDef::kMaxCutbacks, p + ".max_cutbacks");
+    nonNegative(st.damping, p + ".damping");
     atLeast(st.outputEvery, 1, p + ".output_every");
   }
 }
