@@ -4,6 +4,10 @@
 // touching fibres (R = 0.1 mm, L = 4 mm, E = 4000 MPa) along x, pressed in z between two plane
 // tools, the top one moving down by `squeeze` mm in 10 increments; ends held axially (x, y),
 // friction mu between fibres and with the tools, p_max in mm, stabilisation 1e-4 N/mm.
+// twistedBundle(rings, elements, pMax, mu): the same bundle without tools, every fibre clamped
+// at both ends; step 1 pulls the end sections by 0.004 mm (0.1% strain) in 2 increments, step 2
+// turns them by 90 degrees about the bundle axis (x, through the end centre) under that
+// tension, in 10 increments.
 #pragma once
 
 #include "engine/scene.h"
@@ -16,10 +20,8 @@
 
 namespace fibra::scenes {
 
-inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, double mu) {
-  const double L = 4, R = 0.1;
-  SceneDef s;
-  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+// Centres of a hexagonal section of touching fibres of radius R, in the y-z plane.
+inline std::vector<Vec3> hexagonalCentres(int rings, double R) {
   std::vector<Vec3> centres{Vec3::Zero()};
   for (int ring = 1; ring <= rings; ++ring)
     for (int side = 0; side < 6; ++side)
@@ -28,6 +30,14 @@ inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, dou
         const Vec3 corner(0, std::cos(a), std::sin(a)), step(0, std::cos(b), std::sin(b));
         centres.push_back(2 * R * (ring * corner + k * step));
       }
+  return centres;
+}
+
+inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, double mu) {
+  const double L = 4, R = 0.1;
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  const std::vector<Vec3> centres = hexagonalCentres(rings, R);
   double top = 0;
   for (size_t i = 0; i < centres.size(); ++i) {
     FibreDef f;
@@ -64,6 +74,48 @@ inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, dou
   StepDef st;
   st.increments = 10;
   s.steps.push_back(st);
+  return s;
+}
+
+inline SceneDef twistedBundle(int rings, int elements, double pMax, double mu) {
+  const double L = 4, R = 0.1;
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  const std::vector<Vec3> centres = hexagonalCentres(rings, R);
+  for (size_t i = 0; i < centres.size(); ++i) {
+    FibreDef f;
+    f.name = "f" + std::to_string(i);
+    f.material = "m";
+    f.radius = R;
+    f.elements = elements;
+    f.geometry.points = {centres[i] - Vec3(L / 2, 0, 0), centres[i] + Vec3(L / 2, 0, 0)};
+    f.geometry.director = Vec3::UnitZ();
+    s.fibres.push_back(f);
+    BcDef start;
+    start.kind = BcKind::Clamp;
+    start.group = f.name + ".start";
+    s.bcs.push_back(start);
+    BcDef end = start;
+    end.group = f.name + ".end";
+    end.displacement = Vec3(0.004, 0, 0);  // the default ramp: 0.1% strain at t = 1, then held
+    end.rotates = true;
+    end.axis = Vec3::UnitX();
+    end.centre = Vec3(L / 2, 0, 0);
+    end.angle = {{0, 1, 2}, {0, 0, std::numbers::pi / 2}};
+    s.bcs.push_back(end);
+  }
+  s.contact.enabled = true;
+  s.contact.friction = mu;
+  s.contact.maxPenetration = pMax;
+  StepDef pull;
+  pull.name = "pull";
+  pull.increments = 2;
+  s.steps.push_back(pull);
+  StepDef twist;
+  twist.name = "twist";
+  twist.endTime = 2;
+  twist.increments = 10;
+  s.steps.push_back(twist);
   return s;
 }
 

@@ -38,12 +38,13 @@ bool detect(WorldState& w, double t, ContactReport& report) {
   return !w.cancel();
 }
 
-// Newton on the free DOFs with the elements and normals fixed; iterations counted on from
-// `before`.
+// Newton on the free DOFs with the elements and normals fixed; iterations counted on from the
+// previous passes', the longest pass kept.
 NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonCallbacks& callbacks,
-                    StepTimings& timings, int before) {
+                    StepTimings& timings, const NewtonResult& before) {
   NewtonResult nr = solveNewton(w.fibres.q, w.system, w.solver, settings, callbacks, timings);
-  nr.iterations += before;
+  nr.iterations += before.iterations;
+  nr.longestPass = std::max(nr.longestPass, before.longestPass);
   return nr;
 }
 
@@ -65,12 +66,15 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     report.detectionLoops = a;
     for (int b = 1; b <= s.maxNormalLoops; ++b) {
       ++report.normalLoops;
-      nr = newton(w, settings, callbacks, timings, nr.iterations);
+      nr = newton(w, settings, callbacks, timings, nr);
       if (nr.outcome != NewtonOutcome::Converged) return nr;
       if (b == s.maxNormalLoops) break;
       runStage(w, w.pipeline.normals, tTry);
       if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance) break;
     }
+    // The penalties this pass was solved with; the adapted ones serve the next pass only.
+    const std::vector<double> zonePenalty = w.trial.zones.penalty;
+    const std::vector<double> toolPenalty = w.trial.toolZones.penalty;
     runStage(w, w.pipeline.adapt, tTry);
     fillContactReport(w.contact, w.trial, report);
     const double change = std::max(w.fibreStats.penaltyChange, w.toolStats.penaltyChange);
@@ -78,8 +82,11 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     // since, a new detection would find the same set.
     if (a == s.maxDetectionLoops ||
         (largestMotion(w.fibres.q, qDetected) <= s.particleTolerance * minRadius(w.fibres) &&
-         change <= s.penaltyTolerance))
+         change <= s.penaltyTolerance)) {
+      w.trial.zones.penalty = zonePenalty;
+      w.trial.toolZones.penalty = toolPenalty;
       break;
+    }
     qDetected = w.fibres.q;
     if (!detect(w, tTry, report)) return cancelled(nr);
     if (deepestDetected(w.trial) > s.stepPenetration) {

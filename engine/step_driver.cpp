@@ -52,14 +52,15 @@ NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   return settings;
 }
 
-// Size of the next attempt after this one (pseudo-time): doubled after an attempt that
-// converged in at most half the iteration limit, up to the nominal increment; halved after a
+// Size of the next attempt after this one (pseudo-time): doubled after an attempt whose longest
+// Newton pass converged in at most half the iteration limit (with contact an attempt is up to
+// n_A x n_B passes), up to the nominal increment; halved after a
 // failure, quartered when no iteration came within the reference force (smallest relative
 // residual above 1: far outside Newton's basin). Factors of 2 keep every size a power-of-two
 // fraction of the nominal increment.
 double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonResult& nr) {
   if (nr.outcome == NewtonOutcome::Converged)
-    return 2 * nr.iterations <= st.maxIterations ? std::min(2 * dt, nominal) : dt;
+    return 2 * nr.longestPass <= st.maxIterations ? std::min(2 * dt, nominal) : dt;
   if (nr.outcome == NewtonOutcome::Cancelled) return dt;
   return dt * (nr.smallest > 1 ? 0.25 : 0.5);
 }

@@ -169,7 +169,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     c.solve(-c.rf, c.dq);
 
     const auto [alpha, residual] = c.step(acceptance(res.history, res.residual, settings));
-    res.iterations = it;
+    res.iterations = res.longestPass = it;
     res.residual = residual;
     res.smallest = std::min(res.smallest, residual);
     res.history.push_back({residual, alpha * c.scaledMax(c.dq), alpha});

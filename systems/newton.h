@@ -68,6 +68,7 @@ struct NewtonResult {
   int iterations = 0;
   double residual = 0;  // final relative residual
   double smallest = INFINITY;  // smallest relative residual after an iteration
+  int longestPass = 0;  // iterations of the longest Newton pass (contact: of the nested loops)
   std::vector<NewtonRecord> history;
   std::string message;
 };

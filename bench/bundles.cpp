@@ -1,0 +1,112 @@
+// Dense frictional bundles: does every increment converge, and at what cost? Hexagonal bundles
+// (bench/contact_scenes.h) of 7, 19, 37, 61 fibres (R = 0.1 mm, L = 4 mm), squeezed 0.01 mm
+// between two plane tools in 10 increments, or pulled to 0.1% strain and twisted 90 degrees
+// under that tension in 10 increments; mu and p_max swept. Per run: the pseudo-time reached,
+// converged increments, their Newton iterations (all attempts; mean and max) and cutbacks (a
+// failed increment's are given with its message), wall time
+// and its share per part (assembly, factorisation, solve, the rest: detection, normals,
+// penalties, set-up). One markdown table row per run, as docs/RESULTS.md shows them.
+//
+//   build/bench_bundles [--rings 1,2,3,4] [--load squeeze,twist] [--mu 0.1,0.3]
+//                       [--pmax 5e-4,1e-4] [--elements N] [--threads N]
+#include "bench/bench_util.h"
+#include "bench/contact_scenes.h"
+#include "engine/world.h"
+
+#include <cstring>
+#include <sstream>
+
+using namespace fibra;
+
+namespace {
+
+std::vector<double> parseList(const char* text) {
+  std::vector<double> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(std::stod(item));
+  return v;
+}
+
+std::vector<std::string> parseWords(const char* text) {
+  std::vector<std::string> v;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(item);
+  return v;
+}
+
+struct Outcome {
+  double reached = 0, end = 0;
+  int increments = 0, iterations = 0, maxIterations = 0, cutbacks = 0;  // converged increments
+  double wall = 0, assemble = 0, factorise = 0, solve = 0;
+  std::string failure;
+};
+
+Outcome run(const SceneDef& scene, const WorldDef& def) {
+  Outcome o;
+  o.end = scene.steps.back().endTime;
+  o.wall = bench::seconds([&] {
+    World w(scene, def);
+    while (!w.finished()) {
+      const StepReport r = w.step();
+      o.assemble += r.timings.assemble;
+      o.factorise += r.timings.factorise;
+      o.solve += r.timings.solve;
+      if (r.status != StepStatus::Converged) {
+        o.failure = r.message + " (" + std::to_string(r.totalIterations) + " iterations)";
+        break;
+      }
+      ++o.increments;
+      o.iterations += r.totalIterations;
+      o.cutbacks += r.cutbacks;
+      o.maxIterations = std::max(o.maxIterations, r.totalIterations);
+    }
+    o.reached = w.time();
+  });
+  return o;
+}
+
+void printRow(const char* load, size_t fibres, int elements, double mu, double pMax,
+              const Outcome& o) {
+  const double other = o.wall - o.assemble - o.factorise - o.solve;
+  const auto share = [&](double x) { return 100 * x / o.wall; };
+  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
+              load, fibres, elements, mu, pMax,
+              o.failure.empty() ? "yes" : ("no, t = " + std::to_string(o.reached)).c_str(),
+              o.increments, o.increments ? double(o.iterations) / o.increments : 0.0,
+              o.maxIterations, o.cutbacks, o.wall, share(o.assemble), share(o.factorise),
+              share(o.solve), share(other));
+  if (!o.failure.empty()) std::printf("  failure: %s\n", o.failure.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<double> rings{1, 2}, mus{0.1, 0.3}, pMaxes{5e-4, 1e-4};
+  std::vector<std::string> loads{"squeeze", "twist"};
+  int elements = 10;
+  WorldDef def;
+  def.threads = 2;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--rings")) rings = parseList(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--mu")) mus = parseList(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--pmax")) pMaxes = parseList(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--load")) loads = parseWords(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--elements")) elements = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--threads")) def.threads = std::atoi(argv[i + 1]);
+  }
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  std::printf("threads %d\n\n", def.threads);
+  std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
+              "per increment, mean / max | cutbacks | wall s | %% asm / fac / sol / other |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (double r : rings)
+    for (const std::string& load : loads)
+      for (double mu : mus)
+        for (double p : pMaxes) {
+          const SceneDef s = load == "twist" ? scenes::twistedBundle(int(r), elements, p, mu)
+                                             : scenes::bundle(int(r), elements, 0.01, p, mu);
+          printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
+        }
+}
