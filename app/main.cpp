@@ -136,6 +136,13 @@ void printIncrement(const StepReport& r, const SceneDef& scene) {
                "residual %.3e, %.3f s\n",
                r.step + 1, scene.steps.size(), r.increment, scene.steps[r.step].increments, r.time,
                r.iterations, r.cutbacks, r.residual, r.timings.total);
+  if (r.cutbacks > 0) std::fprintf(stderr, "  %s\n", r.message.c_str());
+  const StepDef& st = scene.steps[r.step];
+  if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
+    std::fprintf(stderr,
+                 "  note: the step ends %.3g of the reference force away from static equilibrium "
+                 "(viscous_force); hold the loads in a step with damping to let the state settle\n",
+                 r.viscousForce);
   if (!scene.contact.enabled && scene.tools.empty()) return;
   const ContactReport& c = r.contact;
   std::fprintf(stderr,

@@ -11,6 +11,7 @@
 //   4. at the target: time, increment and step counters.
 // After a failure or a cancellation the world is at its last converged state: the start of the
 // increment, or the last sub-increment that converged after a cutback.
+#include "core/format.h"
 #include "engine/contact_loops.h"
 #include "engine/world_state.h"
 #include "systems/boundary.h"
@@ -143,10 +144,24 @@ StepReport advance(WorldState& w) {
   rep.increment = w.increment + 1;
   w.cancel.arm(w.def.cancel);
 
+  // Stops at the last converged state with a status and a message.
+  const auto stop = [&](StepStatus status, const std::string& message) {
+    rep.status = status;
+    rep.message = message;
+    rep.time = w.time;
+    rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
+    rep.timings.total = elapsed();
+    return rep;
+  };
   const double nominal = (st.endTime - tStart) / st.increments;
   if (w.increment == 0 || !(w.dt > 0)) w.dt = nominal;
   while (w.time < t1) {
     const double tTry = w.time + w.dt >= t1 - 1e-9 * nominal ? t1 : w.time + w.dt;
+    if (!(tTry - w.time > 1e-12 * std::max(std::abs(t1), nominal)))
+      return stop(StepStatus::Failed, "increment to t = " + number(t1) +
+                                          " failed: the attempt size fell to " +
+                                          number(tTry - w.time) +
+                                          ", the round-off of the pseudo-time (" + rep.message + ")");
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
@@ -162,17 +177,12 @@ StepReport advance(WorldState& w) {
     discard(w);
     w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
-    if (cancelled || ++rep.cutbacks > st.maxCutbacks) {
-      rep.status = cancelled ? StepStatus::Cancelled : StepStatus::Failed;
-      rep.message = cancelled ? "cancelled" : "increment to t = " + std::to_string(t1) +
-                    " failed after " + std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message;
-      rep.time = w.time;
-      rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
-      rep.timings.total = elapsed();
-      return rep;
-    }
+    if (cancelled) return stop(StepStatus::Cancelled, "cancelled");
+    if (++rep.cutbacks > st.maxCutbacks)
+      return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
+                                          std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message);
     rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
-                   std::to_string(tTry) + ": " + nr.message;
+                   number(tTry) + ": " + nr.message;
   }
 
   if (++w.increment == st.increments) {

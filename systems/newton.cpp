@@ -1,5 +1,7 @@
 #include "systems/newton.h"
 
+#include "core/format.h"
+
 #include <chrono>
 #include <cmath>
 
@@ -188,13 +190,12 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     }
     if (res.message = stagnation(res.history, settings); !res.message.empty()) return res;
     if (residual > settings.divergence * std::max(first, 1.0)) {
-      res.message = "diverging: residual grew from " + std::to_string(first) + " to " +
-                    std::to_string(residual);
+      res.message = "diverging: residual grew from " + number(first) + " to " + number(residual);
       return res;
     }
   }
   res.message = "no convergence in " + std::to_string(settings.maxIterations) +
-                " iterations (residual " + std::to_string(res.residual) + ")";
+                " iterations (residual " + number(res.residual) + ")";
   return res;
 }
 
