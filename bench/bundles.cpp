@@ -8,7 +8,7 @@
 // penalties, set-up). One markdown table row per run, as docs/RESULTS.md shows them.
 //
 //   build/bench_bundles [--rings 1,2,3,4] [--load squeeze,twist] [--mu 0.1,0.3]
-//                       [--pmax 5e-4,1e-4] [--elements N] [--threads N]
+//                       [--pmax 5e-4,1e-4] [--elements N] [--threads N] [--line-search on|off]
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
   std::vector<double> rings{1, 2}, mus{0.1, 0.3}, pMaxes{5e-4, 1e-4};
   std::vector<std::string> loads{"squeeze", "twist"};
   int elements = 10;
+  bool lineSearch = false;
   WorldDef def;
   def.threads = 2;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -95,9 +96,10 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--load")) loads = parseWords(argv[i + 1]);
     if (!std::strcmp(argv[i], "--elements")) elements = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--threads")) def.threads = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--line-search")) lineSearch = !std::strcmp(argv[i + 1], "on");
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::printf("threads %d\n\n", def.threads);
+  std::printf("threads %d, line search %s\n\n", def.threads, lineSearch ? "on" : "off");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
               "per increment, mean / max | cutbacks | wall s | %% asm / fac / sol / other |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
@@ -105,8 +107,9 @@ int main(int argc, char** argv) {
     for (const std::string& load : loads)
       for (double mu : mus)
         for (double p : pMaxes) {
-          const SceneDef s = load == "twist" ? scenes::twistedBundle(int(r), elements, p, mu)
-                                             : scenes::bundle(int(r), elements, 0.01, p, mu);
+          SceneDef s = load == "twist" ? scenes::twistedBundle(int(r), elements, p, mu)
+                                       : scenes::bundle(int(r), elements, 0.01, p, mu);
+          for (StepDef& st : s.steps) st.lineSearch = lineSearch;
           printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
         }
 }
