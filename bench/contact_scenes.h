@@ -33,12 +33,11 @@ inline std::vector<Vec3> hexagonalCentres(int rings, double R) {
   return centres;
 }
 
-inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, double mu) {
-  const double L = 4, R = 0.1;
+// The bundle's material and fibres (named f0, f1, ... from the centre out), along x.
+inline SceneDef bundleFibres(int rings, int elements, double L, double R) {
   SceneDef s;
   s.materials.push_back({"m", 4000, 0.3, 1, 1});
   const std::vector<Vec3> centres = hexagonalCentres(rings, R);
-  double top = 0;
   for (size_t i = 0; i < centres.size(); ++i) {
     FibreDef f;
     f.name = "f" + std::to_string(i);
@@ -48,6 +47,15 @@ inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, dou
     f.geometry.points = {centres[i] - Vec3(L / 2, 0, 0), centres[i] + Vec3(L / 2, 0, 0)};
     f.geometry.director = Vec3::UnitZ();
     s.fibres.push_back(f);
+  }
+  return s;
+}
+
+inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, double mu) {
+  const double L = 4, R = 0.1;
+  SceneDef s = bundleFibres(rings, elements, L, R);
+  double top = 0;
+  for (const FibreDef& f : s.fibres) {
     for (const char* end : {".start", ".end"}) {
       BcDef b;
       b.kind = BcKind::Fix;
@@ -56,7 +64,7 @@ inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, dou
       b.dofs[Y] = true;
       s.bcs.push_back(b);
     }
-    top = std::max(top, centres[i].z());
+    top = std::max(top, f.geometry.points[0].z());
   }
   for (int side : {-1, 1}) {
     ToolDef t;
@@ -79,18 +87,8 @@ inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, dou
 
 inline SceneDef twistedBundle(int rings, int elements, double pMax, double mu) {
   const double L = 4, R = 0.1;
-  SceneDef s;
-  s.materials.push_back({"m", 4000, 0.3, 1, 1});
-  const std::vector<Vec3> centres = hexagonalCentres(rings, R);
-  for (size_t i = 0; i < centres.size(); ++i) {
-    FibreDef f;
-    f.name = "f" + std::to_string(i);
-    f.material = "m";
-    f.radius = R;
-    f.elements = elements;
-    f.geometry.points = {centres[i] - Vec3(L / 2, 0, 0), centres[i] + Vec3(L / 2, 0, 0)};
-    f.geometry.director = Vec3::UnitZ();
-    s.fibres.push_back(f);
+  SceneDef s = bundleFibres(rings, elements, L, R);
+  for (const FibreDef& f : s.fibres) {
     BcDef start;
     start.kind = BcKind::Clamp;
     start.group = f.name + ".start";

@@ -20,7 +20,7 @@
 // When loop A stops, the penalties go back to those its last pass was solved with: the accepted
 // state is the equilibrium of its own elements and penalties, and the next increment starts
 // from it. (Keeping the adapted penalties, as before, left the accepted states of the squeezed
-// 7- and 19-fibre bundles out of equilibrium by 0.3-1.7 times the reference force; the next
+// 7- and 19-fibre bundles out of equilibrium by 0.04-1.7 times the reference force; the next
 // increment's Newton had to absorb that jump, and the 19-fibre bundle failed at t = 0.48.) The
 // friction history recorded by the adapt stage is kept. The loop's normals are not rolled back:
 // the last update's turn is below the tolerance, and it leaves 1e-5-3e-4 of the reference force.

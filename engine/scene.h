@@ -95,9 +95,9 @@ struct LoadDef {
 };
 
 struct StepDef {
-  // Upper bounds the validation enforces: more iterations than this never helped a Newton
-  // attempt that the stagnation test did not stop; 50 cuts (halvings or more) bring an attempt to
-  // 1e-15 of its size, where round-off of the pseudo-time takes over.
+  // Upper bounds the validation enforces, so that a mistyped value (1e9) cannot run for hours:
+  // the stagnation test stops a stuck attempt long before 10000 iterations, and 50 cuts (each a
+  // half or a quarter) bring an attempt below 1e-15 of its size, past the round-off stop.
   static constexpr int kMaxIterations = 10000;
   static constexpr int kMaxCutbacks = 50;
 

@@ -28,18 +28,9 @@ double stepStart(const WorldState& w, int step) {
   return step == 0 ? 0.0 : w.scene.steps[step - 1].endTime;
 }
 
-// |f on the free DOFs| / F_ref at the converged state, F_ref = max(|f_ext|, |reactions|, floor)
-// as in Newton's test (director components divided by the length scale).
+// |f on the free DOFs| / F_ref at the converged state, as in Newton's test.
 double relativeFree(const WorldState& w, const Eigen::VectorXd& f) {
-  const LinearSystem& ls = w.system;
-  double free2 = 0, ext2 = 0, held2 = 0;
-  for (Index d = 0; d < ls.r.size(); ++d) {
-    const double w2 = d % kNodeDofs < 3 ? 1.0 : 1 / (w.lengthScale * w.lengthScale);
-    ext2 += w2 * ls.fext(d) * ls.fext(d);
-    if (ls.equation[d] >= 0) free2 += w2 * f(d) * f(d);
-    else held2 += w2 * ls.r(d) * ls.r(d);
-  }
-  return std::sqrt(free2) / std::max({std::sqrt(ext2), std::sqrt(held2), w.forceFloor});
+  return relativeToReference(w.system, f, w.lengthScale, w.forceFloor);
 }
 
 NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {

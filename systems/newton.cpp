@@ -21,26 +21,14 @@ struct Context {
   StepTimings& timings;
   Eigen::VectorXd rf, dq, dqBar;
 
-  // Weight of DOF d in norms: director forces (N mm) and increments are divided / multiplied
-  // by the length scale so that every component is a force (N) or a length ratio.
-  double forceWeight(Index d) const { return d % kNodeDofs < 3 ? 1.0 : 1 / settings.lengthScale; }
-
-  // Assembles at the current q; returns |r_f| / F_ref, F_ref = max(|f_ext|, |r_held|, floor).
+  // Assembles at the current q; returns |r_f| / F_ref.
   double assemble(bool withTangent) {
     const auto t0 = Clock::now();
     cb.assemble(withTangent);
     timings.assemble += since(t0);
     rf.resize(ls.freeCount);
     for (Index i = 0; i < ls.freeCount; ++i) rf(i) = ls.r(ls.dofOf[i]);
-    double free2 = 0, all2 = 0, ext2 = 0;
-    for (Index d = 0; d < ls.r.size(); ++d) {
-      const double w2 = std::pow(forceWeight(d), 2);
-      all2 += w2 * ls.r(d) * ls.r(d);
-      ext2 += w2 * ls.fext(d) * ls.fext(d);
-      if (ls.equation[d] >= 0) free2 += w2 * ls.r(d) * ls.r(d);
-    }
-    const double ref = std::max({std::sqrt(ext2), std::sqrt(std::max(all2 - free2, 0.0)), settings.forceFloor});
-    return std::sqrt(free2) / ref;
+    return relativeToReference(ls, ls.r, settings.lengthScale, settings.forceFloor);
   }
 
   // max |v_i| over free DOFs, positions divided by the length scale.
@@ -146,6 +134,20 @@ std::string stagnation(const std::vector<NewtonRecord>& h, const NewtonSettings&
 }
 
 }  // namespace
+
+double relativeToReference(const LinearSystem& ls, const Eigen::VectorXd& f, double lengthScale,
+                           double forceFloor) {
+  double fFree2 = 0, rFree2 = 0, rAll2 = 0, ext2 = 0;
+  for (Index d = 0; d < ls.r.size(); ++d) {
+    // director forces (N mm) divided by the length scale: every component reads as a force
+    const double w2 = std::pow(d % kNodeDofs < 3 ? 1.0 : 1 / lengthScale, 2);
+    rAll2 += w2 * ls.r(d) * ls.r(d);
+    ext2 += w2 * ls.fext(d) * ls.fext(d);
+    if (ls.equation[d] >= 0) rFree2 += w2 * ls.r(d) * ls.r(d), fFree2 += w2 * f(d) * f(d);
+  }
+  const double ref = std::max({std::sqrt(ext2), std::sqrt(std::max(rAll2 - rFree2, 0.0)), forceFloor});
+  return std::sqrt(fFree2) / ref;
+}
 
 NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
                          const NewtonSettings& settings, const NewtonCallbacks& cb,

@@ -82,6 +82,12 @@ struct NewtonCallbacks {
   std::function<bool()> cancel;
 };
 
+// |f on the free DOFs| / F_ref, F_ref = max(|f_ext|, |r on the held DOFs| (the reactions),
+// forceFloor), director components divided by lengthScale (N). f: one entry per DOF (N, N mm);
+// f = ls.r gives Newton's relative residual.
+double relativeToReference(const LinearSystem& ls, const Eigen::VectorXd& f, double lengthScale,
+                           double forceFloor);
+
 NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
                          const NewtonSettings& settings, const NewtonCallbacks& callbacks,
                          StepTimings& timings);
