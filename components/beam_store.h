@@ -23,11 +23,13 @@ using Vec15 = Eigen::Matrix<double, kGenStrains, 1>;
 
 // How a fibre's elements are integrated.
 enum class AxialRule { Reduced, Full };         // order or order+1 Gauss points along the axis
-enum class SectionRule { Moments, Quadrature };  // exact disc moments at the centroid metric,
-                                                 // or a polar rule with the pointwise metric
+// Exact disc moments with the metric frozen at the centroid (exact on straight untwisted
+// references only), or a polar rule with the pointwise metric (the default: converged on curved
+// and twisted references, docs/METHOD.md "Section integration").
+enum class SectionRule { Moments, Quadrature };
 struct BeamIntegration {
   AxialRule axial = AxialRule::Reduced;
-  SectionRule section = SectionRule::Moments;
+  SectionRule section = SectionRule::Quadrature;
   int rings = 3;    // Quadrature: radial points (Gauss in r^2)
   int sectors = 8;  // Quadrature: equally spaced angles
 };

@@ -96,7 +96,7 @@ TEST_CASE("scene errors: structure — unknown, repeated, missing and mistyped f
         "s.json: fibres[0].geometry.pitch: unknown field for a line geometry (known fields: type, "
         "points, director)");
   CHECK(errorAfter([](Json& j) {
-          j["fibres"][0]["integration"] = {{"rings", 2}};
+          j["fibres"][0]["integration"] = {{"section", "moments"}, {"rings", 2}};
         }) ==
         "s.json: fibres[0].integration.rings: unknown field for section \"moments\" (known fields: "
         "axial, section)");

@@ -91,7 +91,7 @@ TEST_CASE("scene loader: the cantilever sample loads to its SceneDef") {
   CHECK(f.geometry.points[1] == Vec3(10, 0, 0));
   CHECK(f.geometry.director == Vec3(0, 1, 0));
   CHECK(f.integration.axial == AxialRule::Reduced);
-  CHECK(f.integration.section == SectionRule::Moments);
+  CHECK(f.integration.section == SectionRule::Quadrature);
   REQUIRE(s.bcs.size() == 1);
   CHECK(s.bcs[0].kind == BcKind::Clamp);
   CHECK(s.bcs[0].group == "beam.start");
