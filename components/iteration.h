@@ -1,6 +1,8 @@
 // Small stores that pass values between the driver and the systems of an iteration. No logic.
 #pragma once
 
+#include "core/types.h"
+
 namespace fibra {
 
 // What the next run of a stage is for: written by the driver before it runs a stage.
@@ -13,6 +15,7 @@ struct IterationInput {
 struct ContactLoopStats {
   double normalTurn = 0;     // rad: largest turn of a normal at the last normal update
   double penaltyChange = 0;  // largest |k_new / k_old - 1| at the last penalty adaptation
+  Index zonesAtCeiling = 0;  // zones held at the penalty ceiling deeper than p_max (same update)
 };
 
 }  // namespace fibra

@@ -36,6 +36,7 @@ struct ToolZoneStore {
   // --- per (tool, fibre) ---
   std::vector<double> penalty;  // k, N/mm
   std::vector<double> pMax;     // p_max aimed at, mm (the tool's)
+  std::vector<double> stiffness;  // section stiffness E_f R_f, N/mm: scale of the penalty bounds
 
   Index size() const { return Index(penalty.size()); }
 };

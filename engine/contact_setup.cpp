@@ -71,6 +71,8 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h
   p.initialPenalty = def.initialPenalty;
   p.penaltyChange = def.penaltyChange;
+  p.penaltyMin = def.penaltyMin;
+  p.penaltyMax = def.penaltyMax;
   p.maxDetectionLoops = def.maxDetectionLoops;
   p.maxNormalLoops = def.maxNormalLoops;
   return p;
@@ -92,6 +94,7 @@ void buildTools(const SceneDef& scene, const FibreStore& fs, const MaterialStore
       const double ER = materials.youngModulus[fs.material[f]] * fs.radius[f];
       zones.penalty.push_back(std::isfinite(params.initialPenalty) ? params.initialPenalty : ER);
       zones.pMax.push_back(tools.pMax.back());
+      zones.stiffness.push_back(ER);
     }
   }
 }

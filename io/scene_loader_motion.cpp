@@ -159,7 +159,7 @@ ContactDef readContact(const Json& j, const std::string& path) {
       j, path,
       {"enabled", "proximity_distance", "test_point_spacing", "theta_cross_deg",
        "theta_parallel_deg", "self_contact", "self_contact_separation", "skin", "max_penetration",
-       "regularisation", "initial_penalty", "penalty_change", "friction", "max_reversible_slip",
+       "regularisation", "initial_penalty", "penalty_change", "penalty_min", "penalty_max", "friction", "max_reversible_slip",
        "friction_tangent", "max_detection_loops", "max_normal_loops"});
   constexpr double kRad = std::numbers::pi / 180;
   ContactDef c;
@@ -175,6 +175,8 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.regularisation = f.number("regularisation", c.regularisation);
   c.initialPenalty = f.number("initial_penalty", c.initialPenalty);
   c.penaltyChange = f.number("penalty_change", c.penaltyChange);
+  c.penaltyMin = f.number("penalty_min", c.penaltyMin);
+  c.penaltyMax = f.number("penalty_max", c.penaltyMax);
   c.friction = f.number("friction", c.friction);
   c.maxReversibleSlip = f.number("max_reversible_slip", c.maxReversibleSlip);
   c.frictionTangent = f.choice(

@@ -339,6 +339,10 @@ void validateContact(const ContactDef& c) {
   positiveOrDefault(c.initialPenalty, "contact.initial_penalty");
   if (!(c.penaltyChange >= 1 && std::isfinite(c.penaltyChange)))
     fail("contact.penalty_change", "must be >= 1, got " + num(c.penaltyChange));
+  positive(c.penaltyMin, "contact.penalty_min");
+  if (!(c.penaltyMax >= c.penaltyMin && std::isfinite(c.penaltyMax)))
+    fail("contact.penalty_max", "must be finite and >= penalty_min (" + num(c.penaltyMin) +
+                                    "), got " + num(c.penaltyMax));
   nonNegative(c.friction, "contact.friction");
   positiveOrDefault(c.maxReversibleSlip, "contact.max_reversible_slip");
   atLeast(c.maxDetectionLoops, 1, "contact.max_detection_loops");

@@ -20,7 +20,14 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
   const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
   const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
   const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
-  const Vec3 d = I.x0 - J.x0;
+  // Centre-to-centre vector without its component along the mean tangent: the sections of a
+  // pair drift apart along parallel fibres as they slide, and that axial offset must not tilt
+  // the normal (a tilted normal turns normal force into axial force, docs/CONTACT.md).
+  // Sections on one axis (fibres meeting end to end) keep the axial direction.
+  const Vec3 t = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
+  const Vec3 centres = I.x0 - J.x0;
+  Vec3 d = centres - centres.dot(t) * t;
+  if (d.norm() <= 1e-9 * (RI + RJ)) d = centres;
   Vec3 cross = tI.cross(tJ);
   const double theta = std::atan2(cross.norm(), std::abs(tI.dot(tJ)));
   double w = theta > thetaCross ? 1 : 0;

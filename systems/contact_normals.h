@@ -10,12 +10,20 @@
 //
 // With the sections of the two particles (centres x0, unit tangents t) and
 //   theta = atan2(|t_I x t_J|, |t_I . t_J|) in [0, pi/2],
-//   n_cross = t_I x t_J / |t_I x t_J|,  n_par = (x0I - x0J) / |x0I - x0J|,
+//   n_cross = t_I x t_J / |t_I x t_J|,  n_par = d / |d|,  d = P_t (x0I - x0J),
+//   P_t = I - t t^T, t = the mean tangent (t_I + sign(t_I . t_J) t_J) / |...|,
 //   w = clamp((theta - theta_par) / (theta_cross - theta_par), 0, 1)  (a step when they are equal),
 //   N = normalised(w n_cross + (1 - w) n_par),  n_cross first turned so that n_cross.(x0I - x0J) >= 0,
-// so that N points from J to I (N.(x0I - x0J) >= 0); the gap is gN = (xI(xi_I) - xJ(xi_J)).N.
+// so that N points from J to I (N.d >= 0); the gap is gN = (xI(xi_I) - xJ(xi_J)).N.
+// P_t removes the axial offset of the two sections: paired sections of parallel fibres drift
+// apart along the axis as the fibres slide (by the slip of a pass), and the full centre-to-centre
+// direction would tilt N by atan(offset / (R_I + R_J)), turning normal force into axial force
+// (a spurious negative axial stiffness ~ sum R_N / (R_I + R_J), and a friction drag short by
+// R_N tan(tilt)). On exact pairs (closest sections) the offset is zero and nothing changes.
 // Swapping I and J flips N and keeps gN (n_cross and n_par are both odd in the swap).
-// Degenerate: n_par undefined (|x0I - x0J| <= 1e-9 (R_I + R_J)) with w < 1: N = n_cross when
+// Sections on one axis (|d| <= 1e-9 (R_I + R_J) while the centres are apart: fibres meeting end
+// to end) keep d = x0I - x0J.
+// Degenerate: n_par undefined (|d| <= 1e-9 (R_I + R_J)) with w < 1: N = n_cross when
 // w > 0; else (coincident centres of parallel fibres) N = (xJ - xI) / |xJ - xI| from the
 // particles, which then face each other: a full penetration gN = -|xI - xJ|. kFallbackNormal.
 #pragma once

@@ -10,8 +10,8 @@ void carryZonePenalties(const FibreStore& fs, const MaterialStore& materials,
   const auto ER = [&](Index f) { return materials.youngModulus[fs.material[f]] * fs.radius[f]; };
   for (Index i = 0; i < z.size(); ++i) {
     const Index o = z.previous[i];
-    const double k0 = std::isfinite(p.initialPenalty) ? p.initialPenalty
-                                                      : std::min(ER(z.fibreI[i]), ER(z.fibreJ[i]));
+    z.stiffness[i] = std::min(ER(z.fibreI[i]), ER(z.fibreJ[i]));
+    const double k0 = std::isfinite(p.initialPenalty) ? p.initialPenalty : z.stiffness[i];
     z.penalty[i] = o >= 0 ? previous.penalty[o] : k0;
     z.pMax[i] = p.pMax;
   }

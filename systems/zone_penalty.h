@@ -3,10 +3,10 @@
 //
 // Reads  FibreStore (radii, materials), MaterialStore (E), ContactParams (p_max, initial k), the
 //        previous call's ZoneStore (penalty), the new zones' `previous`.
-// Writes the new ZoneStore's penalty and pMax columns.
+// Writes the new ZoneStore's penalty, pMax and stiffness columns.
 //   k_z = k_previous(z) when the zone matches a previous one (its own id continued, or a part
 //         split off it: systems/zone_identity.h), else k0 = min(E_I R_I, E_J R_J) (or the
-//         scene's initial penalty); p_max,z = p_max.
+//         scene's initial penalty); p_max,z = p_max; stiffness_z = min(E_I R_I, E_J R_J).
 // Serial over zones (a copy per zone).
 #pragma once
 

@@ -246,7 +246,11 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     // eq. 10
     e.theta = std::acos(std::min(1.0, std::abs(tI.dot(tJ))));
     const double w = std::clamp((e.theta - p.thetaParallel) / (p.thetaCross - p.thetaParallel), 0.0, 1.0);
-    const Vec3 d = sI.x0 - sJ.x0;
+    // The centre-to-centre direction without its component along the mean tangent (the
+    // sections' axial offset, systems/contact_normals.h).
+    const Vec3 tm = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
+    Vec3 d = sI.x0 - sJ.x0 - (sI.x0 - sJ.x0).dot(tm) * tm;
+    if (d.norm() <= 1e-9 * (fs.radius[I] + fs.radius[J])) d = sI.x0 - sJ.x0;  // end to end
     Vec3 nc = tI.cross(tJ);
     if (nc.norm() > 0) nc.normalize();
     if (nc.dot(d) < 0) nc = -nc;
