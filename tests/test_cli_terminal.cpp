@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <regex>
 
 using namespace fibra::test;
@@ -94,4 +95,38 @@ TEST_CASE("fibra run into a used --out replaces the earlier run's files and keep
                                   "--vtu-format", "xml"}, scratch);
   CHECK(bad.status == 2);
   CHECK(bad.output.starts_with("fibra: --vtu-format: expected binary or ascii, got 'xml'\n"));
+}
+
+TEST_CASE("fibra --trace writes every span's start and length to the nanosecond, nested") {
+  TempDir scratch("cli_trace");
+  fs::create_directories(scratch.path());
+  const std::string trace = scratch / "t.json";
+  REQUIRE(runFibra({"run", sourcePath("samples/roller_drag.json"), "--out", scratch / "out",
+                    "--quiet", "--trace", trace, "--threads", "2"},
+                   scratch).status == 0);
+  const auto json = nlohmann::json::parse(readFile(trace));
+  const std::regex exact(R"("ts":\d+\.\d{3},"dur":\d+\.\d{3})");
+  const std::string text = readFile(trace);
+  const auto spans = json.at("traceEvents");
+  REQUIRE(spans.size() > 100);
+  CHECK(std::distance(std::sregex_iterator(text.begin(), text.end(), exact),
+                      std::sregex_iterator()) == std::ptrdiff_t(spans.size()));
+  // Per thread, spans sorted by start either nest in the enclosing one or follow it.
+  std::map<int, std::vector<std::pair<double, double>>> byThread;
+  for (const auto& e : spans)
+    byThread[e.at("tid").get<int>()].emplace_back(e.at("ts").get<double>(),
+                                                  e.at("ts").get<double>() + e.at("dur").get<double>());
+  int crossed = 0;
+  for (auto& [thread, list] : byThread) {
+    std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && a.second > b.second);
+    });
+    std::vector<double> open;  // ends of the enclosing spans
+    for (const auto& [begin, end] : list) {
+      while (!open.empty() && begin >= open.back() - 0.002) open.pop_back();
+      if (!open.empty() && end > open.back() + 0.002) ++crossed;
+      open.push_back(end);
+    }
+  }
+  CHECK(crossed == 0);
 }

@@ -101,6 +101,9 @@ int main(int argc, char** argv) {
     worker.join();
     for (const std::string& line : shared.lines) std::printf("%s\n", line.c_str());
     std::fprintf(stderr, "\n");
+    // An Eigen vector made by the library and freed here: the ABI holds (docs/EMBEDDING.md).
+    std::printf("residual of the last converged state: |r| = %.3g N\n",
+                world.residual().norm());
     switch (shared.outcome) {
       case fibra::StepStatus::Finished:
         std::printf("finished: t = %g, %d frames in %s\n", world.time(), outputs.frames(), argv[2]);
