@@ -3,6 +3,8 @@
 #include "engine/contact_setup.h"
 #include "fibra/version.h"
 
+#include <tbb/info.h>
+
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -28,7 +30,13 @@ std::string contactLine(const World& world) {
                   "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d\n",
                   c.pMax, c.mu, degrees(c.thetaCross), degrees(c.thetaParallel),
                   c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops);
-  if (c.tools) out += format("  tools: %zu\n", s.tools.size());
+  if (!c.tools) return out;
+  const ToolStore& tools = world.tools();
+  out += format("  tools: %d\n", tools.size());
+  for (Index t = 0; t < tools.size(); ++t)
+    out += format("    %s: %s, mu %g, p_max %g mm\n", tools.name[t].c_str(),
+                  tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder", tools.friction[t],
+                  tools.pMax[t]);
   return out;
 }
 
@@ -45,8 +53,8 @@ std::string describeProblem(const World& world, const std::string& scene, int th
   out += format("  %zu steps, %d increments, t = 0 .. %g\n", s.steps.size(), increments,
                 s.steps.empty() ? 0.0 : s.steps.back().endTime);
   out += contactLine(world);
-  if (threads >= 0) out += format("  threads: %s\n", threads == 0 ? "all cores" :
-                                                        std::to_string(threads).c_str());
+  if (threads >= 0)
+    out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());
   return out;
 }
 

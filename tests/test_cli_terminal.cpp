@@ -42,6 +42,7 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(countLines(r.output, R"(^  7 fibres, \d+ nodes, \d+ elements, \d+ DOFs$)") == 1);
   CHECK(countLines(r.output, R"(^  contact: fibre-fibre, p_max [0-9.e-]+ mm, mu 0.1, )") == 1);
   CHECK(countLines(r.output, R"(^  tools: 2$)") == 1);
+  CHECK(countLines(r.output, R"(^    (bottom|top): plane, mu 0.1, p_max [0-9.e-]+ mm$)") == 2);
   CHECK(r.output.ends_with("fibra: " + scene + ": the scene is valid\n"));
   CHECK(countLines(r.output, "^step ") == 0);  // nothing solved
   const std::string bad = sourcePath("samples/bad/negative_radius.json");
