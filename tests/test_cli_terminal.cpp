@@ -51,7 +51,7 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(b.output == "fibra: error: " + bad + ": fibres[0].radius: must be > 0, got -1\n");
 }
 
-TEST_CASE("fibra run prints a header, one line per increment and a summary; --quiet only this") {
+TEST_CASE("fibra run prints a header, one line per increment and a summary, --quiet only the summary") {
   TempDir scratch("cli_lines");
   const std::string scene = sourcePath("samples/cantilever.json"), out = scratch / "out";
   const RunResult r = runFibra({"run", scene, "--out", out}, scratch);
