@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # CI: fibra as a package. Installs the build tree's fibra into a scratch prefix, builds
 # samples/embed against it with find_package(fibra) (without -march=native: the ABI must hold),
-# runs it to the end and with an immediate cancel, and checks what each run printed and wrote.
+# runs it to the end and with an immediate cancel, and checks what each run printed and wrote;
+# then configures samples/embed with fibra as a subproject (add_subdirectory) and compiles it.
 #   bash tests/embed_roundtrip.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
 src=$1
@@ -35,5 +36,14 @@ grep -q "^cancelled: t = 0, the last converged state written to " "$work/cancel.
 test -f "$work/cancelled/final_state.csv"
 test "$(wc -l <"$work/cancelled/history.csv")" -eq 1
 if ls "$work/out" "$work/cancelled" | grep -q '\.part$'; then exit 1; fi
+
+# add_subdirectory: the library alone, without -march=native, and the sample compiles against it
+# (its one object; building the library a second time would take minutes).
+cmake -S "$src/samples/embed" -B "$work/sub" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+  -DFIBRA_SOURCE="$src" "${launcher[@]}" >"$work/sub-configure.log"
+if grep -q -- "-march=native" "$work/sub/build.ninja"; then exit 1; fi
+if grep -qE "^build (fibra|fibra_tests|bench_[a-z_]+):" "$work/sub/build.ninja"; then exit 1; fi
+grep -q "^build fibra/libfibra.a:" "$work/sub/build.ninja"
+cmake --build "$work/sub" --target CMakeFiles/fibra_embed.dir/embed.cpp.o >"$work/sub-build.log"
 rm -rf "$work"
 echo "embed round trip: ok"
