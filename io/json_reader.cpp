@@ -37,6 +37,7 @@ class DuplicateKeys {
     return true;
   }
   const std::string& duplicate() const { return duplicate_; }
+  std::string current() const { return pathHere(); }  // the field being read
 
  private:
   struct Frame {
@@ -98,6 +99,14 @@ Json parse(const std::string& text) {
       throw SceneError("byte " + std::to_string(e.byte) + ": malformed JSON: " + what);
     throw SceneError(what.substr(at + 15, colon - at - 15) +
                      ": malformed JSON: " + what.substr(colon + 2));
+  } catch (const Json::out_of_range& e) {
+    // nlohmann: "[json.exception.out_of_range.406] number overflow parsing '1e999'"
+    const std::string what = e.what();
+    const size_t quote = what.find('\'');
+    const std::string literal =
+        quote == std::string::npos ? "" : what.substr(quote + 1, what.size() - quote - 2);
+    fail(keys.current(), "the number " + literal.substr(0, 40) +
+                             " is out of range (a double's magnitude is at most 1.8e308)");
   }
   if (!keys.duplicate().empty()) fail(keys.duplicate(), "duplicate field");
   return j;

@@ -1,5 +1,5 @@
-// A SceneDef filled in code (no scene file, no validateScene) still gets errors that name the
-// fields as the scene file does (docs/SCENE.md), not by their C++ names.
+// Scene errors that name the field as the scene file does (docs/SCENE.md): a SceneDef filled in
+// code (no scene file, no validateScene), and numbers a double cannot hold.
 #include "engine/world.h"
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
@@ -28,4 +28,12 @@ TEST_CASE("contact parameters set in code are reported by their scene names") {
         "contact.skin: must be a finite value >= 0");
   CHECK(errorWith([](ContactDef& c) { c.testPointSpacing = 0; }) ==
         "contact.test_point_spacing: must be > 0");
+}
+
+TEST_CASE("a number beyond a double's range is a scene error naming its field") {
+  const std::string text = R"({"units": "mm-N-MPa",
+    "materials": [{"name": "a", "young_modulus": 1e999}]})";
+  CHECK(errorOf([&] { loadSceneFromString(text, "big.json"); }) ==
+        "big.json: materials[0].young_modulus: the number 1e999 is out of range (a double's "
+        "magnitude is at most 1.8e308)");
 }
