@@ -38,7 +38,8 @@ int clearOutputs(const std::string& dir);
 class Outputs {
  public:
   // Creates `dir` when needed, writes the initial frame and the history's header. The VTU
-  // encoding is the scene's output.vtu_format unless `vtu` overrides it (nullopt: the scene's).
+  // encoding is `encoding`, or the scene's output.vtu_format when nullopt. Throws
+  // std::runtime_error when `dir` cannot be created or a file cannot be written.
   Outputs(const std::string& dir, const World& world,
           std::optional<VtuEncoding> encoding = std::nullopt);
   ~Outputs();
