@@ -1,33 +1,37 @@
-// fibra, the command-line program: solves a scene file and writes its results.
+// fibra, the command-line program: a thin shell over the library (engine/world.h, io/outputs.h)
+// that solves a scene file and writes its results.
 //
-//   fibra run SCENE.json --out DIR [--threads N] [--trace FILE]
-//   fibra describe SCENE.json     the stages of an iteration for the scene, as Markdown
+//   fibra run SCENE.json --out DIR [options]   solve (fibra --help lists the options)
+//   fibra check SCENE.json                     validate, print the problem's size, no solve
+//   fibra describe SCENE.json                  the stages of an iteration, as Markdown
+//   fibra --version
 //
 // Order of work: the scene is loaded, validated and the World built before anything is
-// created, so bad input leaves no trace on disk (exit 2). Then DIR is created and filled:
-// result.pvd + result_NNNN.vtu (the initial state and every output_every-th converged increment,
-// with each step's last), history.csv (a row per converged increment), final_state.csv.
-// Progress goes to stderr, one line per Newton iteration and per increment.
+// created, so bad input leaves no trace on disk (exit 2). Then fibra's own files from an earlier
+// run in DIR are removed (io/outputs.h: clearOutputs; other files stay) and DIR is filled by
+// fibra::Outputs. Progress goes to stderr: a header, one line per converged increment (per
+// Newton iteration too with --verbose; none with --quiet), a summary (app/terminal.h).
 //
 // Exit status: 0 solved; 1 an increment failed (after its cutbacks) or output could not be
-// written; 2 bad usage or a bad scene; 130 interrupted by SIGINT. On failure and interruption the
-// last converged state is written (a frame, the final state) and the history closed.
+// written; 2 bad usage or a bad scene; 130 interrupted by SIGINT, 143 by SIGTERM. On failure and
+// interruption the last converged state is written (a frame, the final state) and the history
+// closed.
 //
-// SIGINT sets the program's one process-level flag; the World polls it through its cancel
-// callback between Newton iterations and returns the last converged state. A second SIGINT
-// kills the program at once.
-#include "io/scene_loader.h"
+// SIGINT and SIGTERM set the program's one process-level flag; the World polls it through its
+// cancel callback between Newton iterations and returns the last converged state. A second
+// signal kills the program at once.
+#include "app/terminal.h"
 #include "engine/world.h"
-#include "io/history_writer.h"
-#include "io/state_writer.h"
-#include "io/vtu_writer.h"
+#include "fibra/version.h"
+#include "io/outputs.h"
+#include "io/scene_loader.h"
 
 #include <atomic>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,40 +40,52 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace fibra;
+using terminal::Verbosity;
 
-constexpr int kSolved = 0, kFailed = 1, kBadInput = 2, kInterrupted = 130;
+constexpr int kSolved = 0, kFailed = 1, kBadInput = 2;
 
-std::atomic<bool> interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the SIGINT flag must be signal-safe");
+std::atomic<int> stopSignal{0};  // the signal that asked the run to stop, 0 while none has
+static_assert(std::atomic<int>::is_always_lock_free, "the signal flag must be signal-safe");
 
-extern "C" void onInterrupt(int) {
-  interrupted.store(true);
-  std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the program at once
+extern "C" void onStopSignal(int signal) {
+  stopSignal.store(signal);
+  std::signal(SIGINT, SIG_DFL);  // a second signal ends the program at once
+  std::signal(SIGTERM, SIG_DFL);
 }
 
 const char* const kUsage =
-    "usage: fibra run SCENE.json --out DIR [--threads N] [--trace FILE]\n"
+    "usage: fibra run SCENE.json --out DIR [--threads N] [--trace FILE] [--vtu-format F]\n"
+    "                 [--quiet | --verbose]\n"
+    "       fibra check SCENE.json\n"
     "       fibra describe SCENE.json\n"
-    "       fibra --help\n"
+    "       fibra --version | --help\n"
     "\n"
-    "describe: prints the stages of an iteration for the scene (Markdown): every system, the\n"
-    "stores it reads and writes, the systems it waits for (docs/ARCHITECTURE.md).\n"
-    "\n"
-    "Solves the scene (format: docs/SCENE.md) and writes into DIR (created if needed):\n"
-    "  result.pvd, result_NNNN.vtu  the fibres (centrelines and surfaces) for ParaView\n"
+    "run: solves the scene (format: docs/SCENE.md) and writes into DIR (created if needed; the\n"
+    "files of an earlier run there are replaced):\n"
+    "  result.pvd, result_NNNN.vtu  the fibres (centrelines and surfaces) for ParaView, with\n"
+    "                               result_contacts_NNNN.vtu, result_tools_NNNN.vtu\n"
     "  history.csv                  one row per converged increment: counters, reactions, probes\n"
     "  final_state.csv              every node's x0, g1, g2 at the last converged state\n"
-    "Options:\n"
-    "  --out DIR       output directory (required)\n"
-    "  --threads N     worker threads (default: all cores)\n"
-    "  --trace FILE    profile: Chrome trace JSON in FILE (open in Perfetto), per-stage\n"
-    "                  times in FILE without .json plus .stages.csv\n"
+    "check: validates the scene and prints the problem's size and contact parameters.\n"
+    "describe: prints the stages of an iteration for the scene (Markdown): every system, the\n"
+    "stores it reads and writes, the systems it waits for (docs/ARCHITECTURE.md).\n"
+    "Options of run:\n"
+    "  --out DIR         output directory (required)\n"
+    "  --threads N       worker threads (default: all cores)\n"
+    "  --trace FILE      profile: Chrome trace JSON in FILE (open in Perfetto), per-stage\n"
+    "                    times in FILE without .json plus .stages.csv\n"
+    "  --vtu-format F    binary (zlib-compressed, the default) or ascii; overrides the scene's\n"
+    "                    output.vtu_format\n"
+    "  --quiet           only errors and the summary\n"
+    "  --verbose         a line per Newton iteration, and contact details per increment\n"
     "Exit status: 0 solved, 1 an increment failed or output failed, 2 bad usage or scene,\n"
-    "130 interrupted (Ctrl-C; the last converged state is written).\n";
+    "130 interrupted (Ctrl-C), 143 terminated (SIGTERM); the last converged state is written.\n";
 
 struct Options {
   std::string scene, out, trace;
   int threads = 0;
+  std::optional<VtuEncoding> vtuEncoding;
+  Verbosity verbosity = Verbosity::Normal;
 };
 
 struct UsageError : std::runtime_error {
@@ -88,20 +104,46 @@ int positiveInt(const std::string& text, const std::string& option) {
   return v;
 }
 
+VtuEncoding vtuFormat(const std::string& text) {
+  if (text == "binary") return VtuEncoding::Binary;
+  if (text == "ascii") return VtuEncoding::Ascii;
+  throw UsageError("--vtu-format: expected binary or ascii, got '" + text + "'");
+}
+
+// An option with a value: stores it and returns true; false for any other argument.
+bool valueOption(Options& o, const std::string& a, const std::string& v) {
+  if (a == "--out")
+    o.out = v;
+  else if (a == "--threads")
+    o.threads = positiveInt(v, a);
+  else if (a == "--trace")
+    o.trace = v;
+  else if (a == "--vtu-format")
+    o.vtuEncoding = vtuFormat(v);
+  else
+    return false;
+  return true;
+}
+
+void checkPaths(const Options& o) {
+  if (o.scene.empty()) throw UsageError("missing the scene file");
+  if (o.out.empty()) throw UsageError("missing --out DIR");
+  if (fs::exists(o.out) && !fs::is_directory(o.out))
+    throw UsageError("--out: '" + o.out + "' exists and is not a directory");
+  const fs::path traceDir = fs::path(o.trace).parent_path();
+  if (!o.trace.empty() && !traceDir.empty() && !fs::is_directory(traceDir))
+    throw UsageError("--trace: no directory '" + traceDir.string() + "'");
+}
+
 Options parseRun(int argc, char** argv) {
   Options o;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
-    const bool hasValue = i + 1 < argc;
-    if (a == "--out" || a == "--threads" || a == "--trace") {
-      if (!hasValue) throw UsageError(a + ": missing value");
-      const std::string v = argv[++i];
-      if (a == "--out")
-        o.out = v;
-      else if (a == "--threads")
-        o.threads = positiveInt(v, a);
-      else
-        o.trace = v;
+    if (a == "--out" || a == "--threads" || a == "--trace" || a == "--vtu-format") {
+      if (i + 1 >= argc) throw UsageError(a + ": missing value");
+      valueOption(o, a, argv[++i]);
+    } else if (a == "--quiet" || a == "--verbose") {
+      o.verbosity = a == "--quiet" ? Verbosity::Quiet : Verbosity::Verbose;
     } else if (a.starts_with("-")) {
       throw UsageError("unknown option '" + a + "'");
     } else if (o.scene.empty()) {
@@ -110,13 +152,7 @@ Options parseRun(int argc, char** argv) {
       throw UsageError("more than one scene file ('" + o.scene + "', '" + a + "')");
     }
   }
-  if (o.scene.empty()) throw UsageError("missing the scene file");
-  if (o.out.empty()) throw UsageError("missing --out DIR");
-  if (fs::exists(o.out) && !fs::is_directory(o.out))
-    throw UsageError("--out: '" + o.out + "' exists and is not a directory");
-  const fs::path traceDir = fs::path(o.trace).parent_path();
-  if (!o.trace.empty() && !traceDir.empty() && !fs::is_directory(traceDir))
-    throw UsageError("--trace: no directory '" + traceDir.string() + "'");
+  checkPaths(o);
   return o;
 }
 
@@ -125,107 +161,47 @@ std::string stageCsvPath(std::string trace) {
   return trace + ".stages.csv";
 }
 
-void printIteration(const Progress& p, int steps) {
-  std::fprintf(stderr, "step %d/%d  t = %-10.6g load %5.1f%%  iteration %2d  residual %.3e\n",
-               p.step + 1, steps, p.time, 100 * p.loadFactor, p.iteration, p.residual);
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
-
-void printIncrement(const StepReport& r, const SceneDef& scene) {
-  std::fprintf(stderr,
-               "step %d/%zu  increment %d/%d  t = %.6g  converged: %d iterations, %d cutbacks, "
-               "residual %.3e, %.3f s\n",
-               r.step + 1, scene.steps.size(), r.increment, scene.steps[r.step].increments, r.time,
-               r.iterations, r.cutbacks, r.residual, r.timings.total);
-  if (r.cutbacks > 0) std::fprintf(stderr, "  %s\n", r.message.c_str());
-  const StepDef& st = scene.steps[r.step];
-  if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
-    std::fprintf(stderr,
-                 "  note: the step ends %.3g of the reference force away from static equilibrium "
-                 "(viscous_force); hold the loads in a step with damping to let the state settle\n",
-                 r.viscousForce);
-  if (!scene.contact.enabled && scene.tools.empty()) return;
-  const ContactReport& c = r.contact;
-  std::fprintf(stderr,
-               "  contact: %d zones, %d + %d tool elements (%d active, %d sliding), max "
-               "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts; detection: %d "
-               "passes, %d broadphase rebuilds, %d candidate pairs\n",
-               c.zones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
-               c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts, c.detections,
-               c.broadphaseRebuilds, c.candidatePairs);
-}
-
-// The run's output files, as the scene's output section asks.
-class Outputs {
- public:
-  Outputs(const std::string& dir, const World& world) : dir_(dir), def_(world.scene().output) {
-    if (def_.vtu) vtu_.emplace(dir);
-    if (def_.history)
-      history_.emplace((fs::path(dir) / "history.csv").string(), standardHistoryColumns(world));
-    frame(world);
-  }
-
-  void increment(const World& world, const StepReport& r) {
-    if (history_) history_->append(world, r);
-    const StepDef& st = world.scene().steps[r.step];
-    if (r.increment % st.outputEvery == 0 || r.increment == st.increments) frame(world);
-  }
-
-  // The last converged state: a frame if it has none yet, the final state, the history closed.
-  void finish(const World& world) {
-    if (world.time() != framed_) frame(world);
-    if (def_.finalState)
-      writeState((fs::path(dir_) / "final_state.csv").string(), world.fibres(), world.fibres().q);
-    if (history_) history_->close();
-  }
-
- private:
-  void frame(const World& world) {
-    framed_ = world.time();
-    if (!vtu_) return;
-    const SceneDef& s = world.scene();
-    if (s.contact.enabled || !s.tools.empty()) {
-      const ContactSnapshot contacts = world.contactSnapshot();
-      vtu_->write(world.fibres(), world.fibres().q, world.time(), &contacts);
-    } else {
-      vtu_->write(world.fibres(), world.fibres().q, world.time());
-    }
-  }
-  std::string dir_;
-  OutputDef def_;
-  std::optional<VtuSeries> vtu_;
-  std::optional<HistoryWriter> history_;
-  double framed_ = -1;
-};
 
 // Solves every increment; returns the exit status.
-int solve(World& world, Outputs& outputs) {
+int solve(World& world, Outputs& outputs, Verbosity verbosity) {
   const SceneDef& scene = world.scene();
-  int increments = 0, iterations = 0;
+  const auto start = std::chrono::steady_clock::now();
+  int increments = 0, iterations = 0, cutbacks = 0;
+  const auto summary = [&](const char* what) {
+    std::fprintf(stderr,
+                 "fibra: %s: t = %g, %d increments, %d Newton iterations, %d cutbacks, %.3g s; "
+                 "%d frames, history and final state in %s\n",
+                 what, world.time(), increments, iterations, cutbacks, secondsSince(start),
+                 outputs.frames(), outputs.dir().c_str());
+  };
   while (!world.finished()) {
     const StepReport r = world.step();
     if (r.status == StepStatus::Converged) {
       ++increments;
       iterations += r.totalIterations;
-      printIncrement(r, scene);
+      cutbacks += r.cutbacks;
+      terminal::printIncrement(r, scene, verbosity);
       outputs.increment(world, r);
       continue;
     }
     if (r.status == StepStatus::Finished) break;
     outputs.finish(world);
     if (r.status == StepStatus::Cancelled) {
-      std::fprintf(stderr, "fibra: interrupted; wrote the last converged state, t = %g\n",
-                   world.time());
-      return kInterrupted;
+      const int signal = stopSignal.load();
+      summary(signal == SIGTERM ? "terminated (SIGTERM), wrote the last converged state"
+                                : "interrupted, wrote the last converged state");
+      return 128 + (signal ? signal : SIGINT);
     }
-    std::fprintf(stderr,
-                 "fibra: step %d/%zu, increment %d failed: %s\nfibra: wrote the last converged "
-                 "state, t = %g\n",
-                 r.step + 1, scene.steps.size(), r.increment, r.message.c_str(), world.time());
+    std::fprintf(stderr, "fibra: step %d/%zu, increment %d failed: %s\n", r.step + 1,
+                 scene.steps.size(), r.increment, r.message.c_str());
+    summary("failed, wrote the last converged state");
     return kFailed;
   }
   outputs.finish(world);
-  std::fprintf(stderr, "fibra: solved: %d increments, %d Newton iterations, t = %g\n", increments,
-               iterations, world.time());
+  summary("solved");
   return kSolved;
 }
 
@@ -238,57 +214,68 @@ void writeTrace(const Trace& trace, const std::string& path) {
   std::fprintf(stderr, "fibra: trace in %s and %s\n", path.c_str(), stageCsvPath(path).c_str());
 }
 
-std::unique_ptr<World> buildWorld(const Options& o, const SceneDef& scene, Trace* trace) {
-  WorldDef def;
-  def.threads = o.threads;
-  def.trace = trace;
-  def.progress = [steps = int(scene.steps.size())](const Progress& p) { printIteration(p, steps); };
-  def.cancel = [] { return interrupted.load(); };
+// The scene loaded and its World built; SceneError messages name the file.
+std::unique_ptr<World> buildWorld(const std::string& path, WorldDef def) {
+  const SceneDef scene = loadScene(path);  // its errors name the file
   try {
     return std::make_unique<World>(scene, def);
   } catch (const SceneError& e) {
-    throw SceneError(o.scene + ": " + e.what());
+    throw SceneError(path + ": " + e.what());
   }
+}
+
+WorldDef worldDef(const Options& o, Trace* trace) {
+  WorldDef def;
+  def.threads = o.threads;
+  def.trace = trace;
+  if (o.verbosity == Verbosity::Verbose)
+    def.progress = [](const Progress& p) { terminal::printIteration(p); };
+  def.cancel = [] { return stopSignal.load() != 0; };
+  return def;
 }
 
 int run(const Options& o) {
   std::unique_ptr<Trace> trace = o.trace.empty() ? nullptr : std::make_unique<Trace>();
   std::unique_ptr<World> world;
   try {
-    world = buildWorld(o, loadScene(o.scene), trace.get());
+    world = buildWorld(o.scene, worldDef(o, trace.get()));
   } catch (const SceneError& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kBadInput;
   }
-  std::error_code ec;
-  fs::create_directories(o.out, ec);
-  if (ec) {
-    std::fprintf(stderr, "fibra: error: cannot create '%s': %s\n", o.out.c_str(),
-                 ec.message().c_str());
+  if (o.verbosity != Verbosity::Quiet)
+    std::fputs(terminal::describeProblem(*world, o.scene, o.threads).c_str(), stderr);
+  std::optional<Outputs> outputs;
+  try {
+    clearOutputs(o.out);  // a previous run's frames must not mix with this run's
+    outputs.emplace(o.out, *world, o.vtuEncoding);
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kFailed;
   }
   struct sigaction action {};
-  action.sa_handler = onInterrupt;
+  action.sa_handler = onStopSignal;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 
-  Outputs outputs(o.out, *world);
-  const int status = solve(*world, outputs);
+  const int status = solve(*world, *outputs, o.verbosity);
   if (trace) writeTrace(*trace, o.trace);
   return status;
 }
 
-// fibra describe SCENE.json: the scene's stages, built exactly as `run` builds them.
-int describe(int argc, char** argv) {
+// fibra describe|check SCENE.json: the scene built exactly as `run` builds it, then its stages
+// (describe) or its size and parameters (check) on stdout.
+int inspect(int argc, char** argv, bool describe) {
+  const std::string command = argv[1];
   if (argc != 3 || std::string(argv[2]).starts_with("-"))
-    throw UsageError("describe: expected exactly one scene file");
+    throw UsageError(command + ": expected exactly one scene file");
   try {
-    const SceneDef scene = loadScene(argv[2]);  // its errors name the file
-    try {
-      std::fputs(World(scene).describe().c_str(), stdout);
-    } catch (const SceneError& e) {
-      throw SceneError(std::string(argv[2]) + ": " + e.what());
-    }
+    const std::unique_ptr<World> world = buildWorld(argv[2], WorldDef{});
+    const std::string text =
+        describe ? world->describe() : terminal::describeProblem(*world, argv[2], -1);
+    std::fputs(text.c_str(), stdout);
+    if (!describe) std::printf("fibra: %s: the scene is valid\n", argv[2]);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kBadInput;
@@ -304,8 +291,13 @@ int main(int argc, char** argv) {
     std::fputs(kUsage, stdout);
     return kSolved;
   }
+  if (command == "--version" || command == "version") {
+    std::printf("fibra %s\n", FIBRA_VERSION_STRING);
+    return kSolved;
+  }
   try {
-    if (command == "describe") return describe(argc, argv);
+    if (command == "describe" || command == "check")
+      return inspect(argc, argv, command == "describe");
     if (command != "run")
       throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
     return run(parseRun(argc, argv));

@@ -9,7 +9,7 @@ endif()
 find_path(FIBRA_CGAL_INCLUDE_DIR CGAL/box_intersection_d.h)
 find_package(Boost QUIET)
 if(FIBRA_CGAL_INCLUDE_DIR AND Boost_FOUND)
-  target_sources(bench_contact_detection PRIVATE ${CMAKE_SOURCE_DIR}/bench/peers/cgal_broadphase.cpp)
+  target_sources(bench_contact_detection PRIVATE ${PROJECT_SOURCE_DIR}/bench/peers/cgal_broadphase.cpp)
   target_include_directories(bench_contact_detection SYSTEM PRIVATE ${FIBRA_CGAL_INCLUDE_DIR}
     ${Boost_INCLUDE_DIRS})
   # CGAL_LINKED_WITH_TBB enables CGAL::Parallel_tag (oneTBB is linked through fibra_lib).
@@ -24,7 +24,7 @@ if(PkgConfig_FOUND)
   pkg_check_modules(FIBRA_BULLET QUIET bullet)
 endif()
 if(FIBRA_BULLET_FOUND)
-  target_sources(bench_contact_detection PRIVATE ${CMAKE_SOURCE_DIR}/bench/peers/bullet_broadphase.cpp)
+  target_sources(bench_contact_detection PRIVATE ${PROJECT_SOURCE_DIR}/bench/peers/bullet_broadphase.cpp)
   target_include_directories(bench_contact_detection SYSTEM PRIVATE ${FIBRA_BULLET_INCLUDE_DIRS})
   target_link_libraries(bench_contact_detection PRIVATE BulletCollision LinearMath)
   target_compile_definitions(bench_contact_detection PRIVATE FIBRA_HAVE_BULLET

@@ -11,7 +11,8 @@ constexpr double kReachPerRadius = 1.5;
 constexpr double kDefaultThetaParallel = 5 * kDegree;
 constexpr double kDefaultThetaCross = 20 * kDegree;
 
-// The given value, or `fallback` when NaN; throws for a negative one.
+// The given value, or `fallback` when NaN; throws for a negative one, naming `field` as the scene
+// file does (docs/SCENE.md).
 double orDefault(double given, double fallback, const char* field) {
   if (std::isnan(given)) return fallback;
   if (!(given >= 0) || !std::isfinite(given))
@@ -27,25 +28,25 @@ ContactParams resolveContactParams(const FibreStore& fs, const ContactDef& def) 
   double rMin = n > 0 ? fs.radius[0] : 0;
   for (Index f = 0; f < n; ++f) rMin = std::min(rMin, fs.radius[f]);
 
-  const double delta = orDefault(def.proximityDistance, std::nan(""), "proximityDistance");
+  const double delta = orDefault(def.proximityDistance, std::nan(""), "proximity_distance");
   p.reach.resize(n);
   for (Index f = 0; f < n; ++f)
     p.reach[f] = std::isnan(delta) ? kReachPerRadius * fs.radius[f] : delta / 2;
 
   p.testPointSpacing = std::nan("");
   if (!std::isnan(def.testPointSpacing)) {
-    p.testPointSpacing = orDefault(def.testPointSpacing, 0, "testPointSpacing");
-    if (!(p.testPointSpacing > 0)) throw SceneError("contact.testPointSpacing: must be > 0");
+    p.testPointSpacing = orDefault(def.testPointSpacing, 0, "test_point_spacing");
+    if (!(p.testPointSpacing > 0)) throw SceneError("contact.test_point_spacing: must be > 0");
   }
-  p.thetaParallel = orDefault(def.thetaParallel, kDefaultThetaParallel, "thetaParallel");
-  p.thetaCross = orDefault(def.thetaCross, kDefaultThetaCross, "thetaCross");
+  p.thetaParallel = orDefault(def.thetaParallel, kDefaultThetaParallel, "theta_parallel_deg");
+  p.thetaCross = orDefault(def.thetaCross, kDefaultThetaCross, "theta_cross_deg");
   if (p.thetaParallel > p.thetaCross)
-    throw SceneError("contact.thetaParallel: must not exceed contact.thetaCross");
+    throw SceneError("contact.theta_parallel_deg: must not exceed theta_cross_deg");
   if (p.thetaCross > std::numbers::pi / 2)
-    throw SceneError("contact.thetaCross: must not exceed pi / 2");
+    throw SceneError("contact.theta_cross_deg: must not exceed 90 degrees");
 
   p.selfContact = def.selfContact;
-  const double sep = orDefault(def.selfContactSeparation, std::nan(""), "selfContactSeparation");
+  const double sep = orDefault(def.selfContactSeparation, std::nan(""), "self_contact_separation");
   p.selfSeparation.resize(n);
   for (Index f = 0; f < n; ++f) {
     const double h = fs.length[f] / fs.elementCount[f];

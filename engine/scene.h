@@ -119,8 +119,11 @@ struct ProbeDef {
   int node = 0;  // node index within the fibre
 };
 
+enum class VtuEncoding { Binary, Ascii };  // zlib-compressed appended data, or XML text
+
 struct OutputDef {
   bool vtu = true;                      // ParaView series
+  VtuEncoding vtuEncoding = VtuEncoding::Binary;
   bool history = true;                  // CSV history
   bool finalState = true;               // every node's x0, g1, g2 at the end
   Vec3 momentPoint = Vec3::Zero();      // reactions' moments are taken about this point, mm

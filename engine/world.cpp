@@ -25,6 +25,7 @@ const SceneDef& World::scene() const { return s_->scene; }
 const FibreStore& World::fibres() const { return s_->fibres; }
 const MaterialStore& World::materials() const { return s_->materials; }
 const GroupStore& World::groups() const { return s_->groups; }
+const ToolStore& World::tools() const { return s_->tools; }
 const ConstraintStore& World::constraints() const { return s_->constraints; }
 Eigen::VectorXd World::residual() const { return s_->system.r; }
 std::string World::describe() const { return describePipeline(s_->pipeline); }

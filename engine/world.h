@@ -71,6 +71,7 @@ class World {
   const MaterialStore& materials() const;
   const GroupStore& groups() const;
   const ConstraintStore& constraints() const;
+  const ToolStore& tools() const;         // geometry at t = 0 and motions (systems/tool_geometry.h)
   Reaction reaction(Index bc) const;      // of the current state
   Vec3 toolReaction(Index tool) const;    // force the fibres exert on a tool, N
   // The contact state of the current (last converged) state: zones with their penalties,

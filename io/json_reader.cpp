@@ -37,6 +37,7 @@ class DuplicateKeys {
     return true;
   }
   const std::string& duplicate() const { return duplicate_; }
+  std::string current() const { return pathHere(); }  // the field being read
 
  private:
   struct Frame {
@@ -98,6 +99,14 @@ Json parse(const std::string& text) {
       throw SceneError("byte " + std::to_string(e.byte) + ": malformed JSON: " + what);
     throw SceneError(what.substr(at + 15, colon - at - 15) +
                      ": malformed JSON: " + what.substr(colon + 2));
+  } catch (const Json::out_of_range& e) {
+    // nlohmann: "[json.exception.out_of_range.406] number overflow parsing '1e999'"
+    const std::string what = e.what();
+    const size_t quote = what.find('\'');
+    const std::string literal =
+        quote == std::string::npos ? "" : what.substr(quote + 1, what.size() - quote - 2);
+    fail(keys.current(), "the number " + shown(literal) +
+                             " is out of range (a double's magnitude is at most 1.8e308)");
   }
   if (!keys.duplicate().empty()) fail(keys.duplicate(), "duplicate field");
   return j;
@@ -107,15 +116,18 @@ void fail(const std::string& path, const std::string& what) {
   throw SceneError(path.empty() ? what : path + ": " + what);
 }
 
+std::string shown(const std::string& value) {
+  return value.size() > 40 ? value.substr(0, 37) + "..." : value;
+}
+
 std::string typeMismatch(const char* expected, const Json& got) {
   std::string s = std::string("expected ") + expected + ", got ";
   if (got.is_object()) return s + "an object";
   if (got.is_array()) return s + "an array";
   if (got.is_null()) return s + "null";
-  std::string shown = got.dump();
-  if (shown.size() > 40) shown = shown.substr(0, 37) + "...";
+  const std::string value = shown(got.dump());
   const char* kind = got.is_string() ? "a string" : got.is_boolean() ? "a boolean" : "the number";
-  return s + kind + " " + shown;
+  return s + kind + " " + value;
 }
 
 std::string join(const std::string& path, const std::string& key) {
@@ -182,7 +194,7 @@ Vec3 Fields::vec3(const char* key) const { return asVec3(at(key), path(key)); }
 
 void Fields::badChoice(const char* key, const std::string& got,
                        const std::vector<std::string>& names) const {
-  std::string what = "unknown value \"" + got + "\" (expected one of: " + listOf(names) + ")";
+  std::string what = "unknown value \"" + shown(got) + "\" (expected one of: " + listOf(names) + ")";
   fail(path(key), what);
 }
 

@@ -25,6 +25,9 @@ Json parse(const std::string& text);
 
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 
+// A value as shown in a message: itself, or its first 37 characters and "..." when longer than 40.
+std::string shown(const std::string& value);
+
 // "expected a number, got a string ("abc")"
 std::string typeMismatch(const char* expected, const Json& got);
 

@@ -125,9 +125,13 @@ StepDef readStep(const Json& j, const std::string& path) {
 }
 
 OutputDef readOutput(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"vtu", "history", "final_state", "moment_point", "probes"});
+  const Fields f(j, path,
+                 {"vtu", "vtu_format", "history", "final_state", "moment_point", "probes"});
   OutputDef o;
   o.vtu = f.boolean("vtu", o.vtu);
+  o.vtuEncoding = f.choice("vtu_format",
+                           {{"binary", VtuEncoding::Binary}, {"ascii", VtuEncoding::Ascii}},
+                           o.vtuEncoding);
   o.history = f.boolean("history", o.history);
   o.finalState = f.boolean("final_state", o.finalState);
   o.momentPoint = f.vec3("moment_point", o.momentPoint);

@@ -32,7 +32,7 @@ Table readTable(const Json& j, const std::string& path, const Tables& tables) {
   for (const auto& [n, t] : tables) names.push_back(n);
   const std::string close = closestKey(name, names);
   fail(path,
-       "unknown table '" + name + "'" + (close.empty() ? "" : " (did you mean '" + close + "'?)"));
+       "unknown table '" + shown(name) + "'" + (close.empty() ? "" : " (did you mean '" + close + "'?)"));
 }
 
 const std::vector<std::string> kMotionKeys = {"displacement", "table", "rotation"};
@@ -80,7 +80,7 @@ void readDofs(const Json& j, const std::string& path, std::array<bool, 9>& dofs)
         for (int c : components) dofs[c] = true;
         return;
       }
-    fail(at, "unknown DOF \"" + name +
+    fail(at, "unknown DOF \"" + shown(name) +
                  "\" (expected x, y, z, g1x, g1y, g1z, g2x, g2y, g2z, x0, g1 or g2)");
   });
 }

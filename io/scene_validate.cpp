@@ -60,7 +60,7 @@ void checkName(const std::string& name, const std::string& path) {
   if (name.empty()) fail(path, "must not be empty");
   for (char c : name)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-      fail(path, "'" + name + "' contains '" + std::string(1, c) +
+      fail(path, "'" + json_reader::shown(name) + "' contains '" + std::string(1, c) +
                      "'; names use letters, digits, '_', '-' and '.'");
 }
 
@@ -93,7 +93,7 @@ size_t resolve(const Names& names, const std::string& name, const char* what,
     for (const std::string& k : known) hint += (hint.empty() ? " (known: " : ", ") + k;
     hint += ")";
   }
-  fail(path, std::string("unknown ") + what + " '" + name + "'" + hint);
+  fail(path, std::string("unknown ") + what + " '" + json_reader::shown(name) + "'" + hint);
 }
 
 int nodeCount(const FibreDef& f) { return f.order * f.elements + 1; }

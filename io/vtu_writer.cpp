@@ -1,6 +1,7 @@
 #include "io/vtu_writer.h"
 
 #include "io/output_file.h"
+#include "io/vtu_document.h"
 
 #include <cmath>
 #include <cstdio>
@@ -15,7 +16,8 @@ constexpr int kLine = 3, kPolyLine = 4, kPolygon = 7, kQuad = 9;  // VTK cell ty
 
 struct Cells {
   std::vector<std::int64_t> connectivity, offsets;
-  std::vector<int> type, fibre, part;
+  std::vector<std::uint8_t> type, part;
+  std::vector<std::int32_t> fibre;
   void add(int cellType, Index f, int cellPart, std::initializer_list<std::int64_t> points) {
     connectivity.insert(connectivity.end(), points);
     close(cellType, f, cellPart);
@@ -53,28 +55,10 @@ Cells buildCells(const FibreStore& fs, int sides) {
   return c;
 }
 
-template <class T>
-void dataArray(std::ostream& out, const char* type, const char* name, int components,
-               const std::vector<T>& values) {
-  out << "<DataArray type=\"" << type << "\"";
-  if (name) out << " Name=\"" << name << "\"";
-  if (components > 1) out << " NumberOfComponents=\"" << components << "\"";
-  out << " format=\"ascii\">\n";
-  std::string text;
-  for (size_t i = 0; i < values.size(); ++i) {
-    if constexpr (std::is_floating_point_v<T>)
-      appendNumber(text, values[i]);
-    else
-      text += std::to_string(values[i]);
-    text += (i + 1) % (components * 4) == 0 ? '\n' : ' ';
-  }
-  out << text << "\n</DataArray>\n";
-}
-
 // Per-point arrays: centreline nodes, then `sides` rim points per node.
 struct PointArrays {
   std::vector<double> position, radius, g1, g2;
-  std::vector<int> fibre;
+  std::vector<std::int32_t> fibre;
   void add(const Vec3& x, double r, const Vec3& a, const Vec3& b, Index f) {
     position.insert(position.end(), x.data(), x.data() + 3);
     radius.push_back(r);
@@ -102,53 +86,54 @@ PointArrays buildPoints(const FibreStore& fs, const Eigen::VectorXd& q, int side
   return p;
 }
 
-void vtuHeader(std::ostream& out, size_t points, size_t cells) {
-  out << "<?xml version=\"1.0\"?>\n"
-      << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
-         "header_type=\"UInt64\">\n<UnstructuredGrid>\n"
-      << "<Piece NumberOfPoints=\"" << points << "\" NumberOfCells=\"" << cells << "\">\n";
+}  // namespace
+
+void writeGrid(VtuDocument& doc, const std::vector<double>& points,
+               const std::vector<std::int64_t>& connectivity,
+               const std::vector<std::int64_t>& offsets, const std::vector<std::uint8_t>& types) {
+  doc.open("<Points>");
+  doc.array(nullptr, 3, points);
+  doc.close("</Points>");
+  doc.open("<Cells>");
+  doc.array("connectivity", 1, connectivity);
+  doc.array("offsets", 1, offsets);
+  doc.array("types", 1, types);
+  doc.close("</Cells>");
 }
 
-std::vector<double> flatten(const std::vector<Vec3>& v) {
+static std::vector<double> flatten(const std::vector<Vec3>& v) {
   std::vector<double> out;
   out.reserve(3 * v.size());
   for (const Vec3& x : v) out.insert(out.end(), x.data(), x.data() + 3);
   return out;
 }
 
-}  // namespace
-
-void writeContactVtu(const std::string& path, const ContactSnapshot& c) {
+void writeContactVtu(const std::string& path, const ContactSnapshot& c, const VtuDef& def) {
   const Index n = c.size();
   std::vector<double> points;
   std::vector<std::int64_t> connectivity, offsets;
-  std::vector<int> types(n, kLine), fibreI(c.fibreI.begin(), c.fibreI.end()),
+  std::vector<std::uint8_t> types(n, kLine);
+  std::vector<std::int32_t> fibreI(c.fibreI.begin(), c.fibreI.end()),
       fibreJ(c.fibreJ.begin(), c.fibreJ.end());
   for (Index e = 0; e < n; ++e) {
-    for (const Vec3& x : {c.particleI[e], c.particleJ[e]}) points.insert(points.end(), x.data(), x.data() + 3);
+    for (const Vec3& x : {c.particleI[e], c.particleJ[e]})
+      points.insert(points.end(), x.data(), x.data() + 3);
     connectivity.insert(connectivity.end(), {2 * e, 2 * e + 1});
     offsets.push_back(2 * e + 2);
   }
-  OutputFile file(path);
-  std::ostream& out = file.stream();
-  vtuHeader(out, 2 * size_t(n), size_t(n));
-  out << "<CellData Scalars=\"normal_force\" Vectors=\"normal\">\n";
-  dataArray(out, "Float64", "normal", 3, flatten(c.normal));
-  dataArray(out, "Float64", "gap", 1, c.gap);
-  dataArray(out, "Float64", "normal_force", 1, c.normalForce);
-  dataArray(out, "Float64", "friction", 3, flatten(c.friction));
-  dataArray(out, "UInt8", "slip", 1, c.slip);
-  dataArray(out, "UInt8", "tool", 1, c.tool);
-  dataArray(out, "Int32", "fibre_i", 1, fibreI);
-  dataArray(out, "Int32", "fibre_j", 1, fibreJ);
-  out << "</CellData>\n<Points>\n";
-  dataArray(out, "Float64", nullptr, 3, points);
-  out << "</Points>\n<Cells>\n";
-  dataArray(out, "Int64", "connectivity", 1, connectivity);
-  dataArray(out, "Int64", "offsets", 1, offsets);
-  dataArray(out, "UInt8", "types", 1, types);
-  out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  file.commit();
+  VtuDocument doc(def.encoding, 2 * size_t(n), size_t(n));
+  doc.open("<CellData Scalars=\"normal_force\" Vectors=\"normal\">");
+  doc.array("normal", 3, flatten(c.normal));
+  doc.array("gap", 1, c.gap);
+  doc.array("normal_force", 1, c.normalForce);
+  doc.array("friction", 3, flatten(c.friction));
+  doc.array("slip", 1, c.slip);
+  doc.array("tool", 1, c.tool);
+  doc.array("fibre_i", 1, fibreI);
+  doc.array("fibre_j", 1, fibreJ);
+  doc.close("</CellData>");
+  writeGrid(doc, points, connectivity, offsets, types);
+  doc.write(path);
 }
 
 void writeVtu(const std::string& path, const FibreStore& fs, const Eigen::VectorXd& q,
@@ -156,25 +141,19 @@ void writeVtu(const std::string& path, const FibreStore& fs, const Eigen::Vector
   if (def.tubeSides < 3) throw std::invalid_argument("VtuDef::tubeSides must be >= 3");
   const PointArrays p = buildPoints(fs, q, def.tubeSides);
   const Cells c = buildCells(fs, def.tubeSides);
-  OutputFile file(path);
-  std::ostream& out = file.stream();
-  vtuHeader(out, p.radius.size(), c.type.size());
-  out << "<PointData Scalars=\"radius\">\n";
-  dataArray(out, "Float64", "radius", 1, p.radius);
-  dataArray(out, "Float64", "g1", 3, p.g1);
-  dataArray(out, "Float64", "g2", 3, p.g2);
-  dataArray(out, "Int32", "fibre", 1, p.fibre);
-  out << "</PointData>\n<CellData Scalars=\"fibre\">\n";
-  dataArray(out, "Int32", "fibre", 1, c.fibre);
-  dataArray(out, "UInt8", "part", 1, c.part);
-  out << "</CellData>\n<Points>\n";
-  dataArray(out, "Float64", nullptr, 3, p.position);
-  out << "</Points>\n<Cells>\n";
-  dataArray(out, "Int64", "connectivity", 1, c.connectivity);
-  dataArray(out, "Int64", "offsets", 1, c.offsets);
-  dataArray(out, "UInt8", "types", 1, c.type);
-  out << "</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  file.commit();
+  VtuDocument doc(def.encoding, p.radius.size(), c.type.size());
+  doc.open("<PointData Scalars=\"radius\">");
+  doc.array("radius", 1, p.radius);
+  doc.array("g1", 3, p.g1);
+  doc.array("g2", 3, p.g2);
+  doc.array("fibre", 1, p.fibre);
+  doc.close("</PointData>");
+  doc.open("<CellData Scalars=\"fibre\">");
+  doc.array("fibre", 1, c.fibre);
+  doc.array("part", 1, c.part);
+  doc.close("</CellData>");
+  writeGrid(doc, p.position, c.connectivity, c.offsets, c.type);
+  doc.write(path);
 }
 
 VtuSeries::VtuSeries(std::string dir, std::string name, VtuDef def)
@@ -190,24 +169,35 @@ std::string VtuSeries::pvdPath() const {
   return (std::filesystem::path(dir_) / (name_ + ".pvd")).string();
 }
 
-void VtuSeries::write(const FibreStore& fibres, const Eigen::VectorXd& q, double time,
-                      const ContactSnapshot* contacts) {
+void VtuSeries::write(const VtuFrame& f) {
   const std::filesystem::path dir(dir_);
-  writeVtu((dir / framePath(frames())).string(), fibres, q, def_);
-  if (contacts) writeContactVtu((dir / framePath(frames(), "_contacts")).string(), *contacts);
-  times_.push_back(time);
-  contacts_.push_back(contacts != nullptr);
+  const int index = frames();
+  writeVtu((dir / framePath(index)).string(), f.fibres, f.q, def_);
+  if (f.contacts)
+    writeContactVtu((dir / framePath(index, "_contacts")).string(), *f.contacts, def_);
+  if (f.tools && f.tools->size() > 0) {
+    if (extents_.empty()) extents_ = toolExtents(*f.tools, f.fibres, f.q);
+    writeToolVtu((dir / framePath(index, "_tools")).string(), *f.tools, extents_, f.time, def_);
+  }
+  times_.push_back(f.time);
+  contacts_.push_back(f.contacts != nullptr);
+  tools_.push_back(f.tools && f.tools->size() > 0);
+  writePvd();
+}
+
+void VtuSeries::writePvd() const {
   OutputFile pvd(pvdPath());
   std::string text =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  const auto dataset = [&](int i, int part, const char* suffix) {
+    text += "<DataSet timestep=\"";
+    appendNumber(text, times_[i]);
+    text += "\" part=\"" + std::to_string(part) + "\" file=\"" + framePath(i, suffix) + "\"/>\n";
+  };
   for (int i = 0; i < frames(); ++i) {
-    text += "<DataSet timestep=\"";
-    appendNumber(text, times_[i]);
-    text += "\" part=\"0\" file=\"" + framePath(i) + "\"/>\n";
-    if (!contacts_[i]) continue;
-    text += "<DataSet timestep=\"";
-    appendNumber(text, times_[i]);
-    text += "\" part=\"1\" file=\"" + framePath(i, "_contacts") + "\"/>\n";
+    dataset(i, 0, "");
+    if (contacts_[i]) dataset(i, 1, "_contacts");
+    if (tools_[i]) dataset(i, 2, "_tools");
   }
   text += "</Collection>\n</VTKFile>\n";
   pvd.stream() << text;

@@ -10,7 +10,7 @@ jobs=${FIBRA_JOBS:-$(nproc)}
 
 packages=(build-essential cmake ninja-build ccache pkg-config
           libeigen3-dev libtbb-dev libsuitesparse-dev libopenblas-dev
-          doctest-dev nlohmann-json3-dev gnuplot-nox)
+          doctest-dev nlohmann-json3-dev zlib1g-dev gnuplot-nox)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

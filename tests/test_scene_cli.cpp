@@ -130,11 +130,11 @@ TEST_CASE(
   TempDir scratch("cli_cantilever");
   const std::string out = scratch / "out", trace = scratch / "trace.json";
   const RunResult r = runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out,
-                                "--threads", "2", "--trace", trace},
+                                "--threads", "2", "--trace", trace, "--verbose"},
                                scratch);
   REQUIRE(r.status == 0);
-  CHECK(r.output.find("step 1/1  increment 10/10  t = 1  converged") != std::string::npos);
-  CHECK(r.output.find("iteration  1  residual") != std::string::npos);
+  CHECK(r.output.find("step 1/1  increment 10/10  t = 1 ") != std::string::npos);
+  CHECK(r.output.find("iteration  1  residual") != std::string::npos);  // --verbose
 
   // Frames: the initial state and the ten increments, each listed once with its time.
   const auto frames = pvdFrames(out + "/result.pvd");
@@ -243,7 +243,8 @@ TEST_CASE("fibra: a failing increment exits 1 and writes the last converged stat
   const RunResult r = runFibra({"run", scratch / "fail.json", "--out", out}, scratch);
   CHECK(r.status == 1);
   CHECK(r.output.find("fibra: step 1/1, increment 1 failed: ") != std::string::npos);
-  CHECK(r.output.find("fibra: wrote the last converged state, t = 0") != std::string::npos);
+  CHECK(r.output.find("fibra: failed, wrote the last converged state: t = 0,") !=
+        std::string::npos);
   CHECK(readCsv(out + "/history.csv").size() == 1);   // the header: no increment converged
   CHECK(pvdFrames(out + "/result.pvd").size() == 1);  // the initial state, once
   const auto tip = stateRow(out + "/final_state.csv", "beam", 20);
@@ -252,8 +253,13 @@ TEST_CASE("fibra: a failing increment exits 1 and writes the last converged stat
   checkNoPartFiles(out);
 }
 
-TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 130") {
-  TempDir scratch("cli_cancel");
+namespace {
+
+// Runs a long cantilever, sends `signal` once two increments have converged, and checks that
+// the run ends with `status` and `message`, the last converged state and the whole history on
+// disk and no .part file.
+void stopsCleanly(int signal, int expectedStatus, const std::string& message) {
+  TempDir scratch("cli_cancel_" + std::to_string(signal));
   fs::create_directories(scratch.path());
   Json scene = sampleJson("cantilever");
   scene["steps"][0] = {{"end_time", 1}, {"increments", 100000}, {"output_every", 20000}};
@@ -274,12 +280,11 @@ TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 
     if (!running) ::usleep(5000);
   }
   REQUIRE(running);
-  ::kill(child.pid, SIGINT);
+  ::kill(child.pid, signal);
   const int status = waitStatusWithin(child.pid, 60);
   child.ended = true;
-  CHECK(status == 130);
-  CHECK(readFile(scratch / "log").find("fibra: interrupted; wrote the last converged state") !=
-        std::string::npos);
+  CHECK(status == expectedStatus);
+  CHECK(readFile(scratch / "log").find(message) != std::string::npos);
 
   const auto history = readCsv(out + "/history.csv");
   REQUIRE(history.size() >= 3);
@@ -293,4 +298,14 @@ TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 
   REQUIRE(frames.size() == 2);  // the initial state and the state it stopped at
   CHECK(frames.back().first == history.back()[0]);
   checkNoPartFiles(out);
+}
+
+}  // namespace
+
+TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 130") {
+  stopsCleanly(SIGINT, 130, "fibra: interrupted, wrote the last converged state: t = ");
+}
+
+TEST_CASE("fibra: SIGTERM stops like Ctrl-C, with the whole history, and exits 143") {
+  stopsCleanly(SIGTERM, 143, "fibra: terminated (SIGTERM), wrote the last converged state: t = ");
 }

@@ -75,7 +75,7 @@ TEST_CASE("VTU writer: centrelines at x0 and a closed surface at radius R from t
   // Stretch the first node's g1: its section becomes an ellipse with semi-axis 2R along g1.
   g1Of(q, 0) *= 2;
   const int sides = 8;
-  writeVtu(dir / "f.vtu", fibres, q, {sides});
+  writeVtu(dir / "f.vtu", fibres, q, {sides, VtuEncoding::Ascii});
   const std::string xml = readFile(dir / "f.vtu");
   const Index nodes = fibres.nodes();  // 7 + 5
   CHECK(xml.find("NumberOfPoints=\"" + std::to_string(nodes * (1 + sides)) + "\"") !=
@@ -146,7 +146,7 @@ TEST_CASE("contact VTU: one line per contact element, forces that balance the lo
   REQUIRE(c.size() >= 1);
   TempDir dir("contact_vtu");
   fs::create_directories(dir.path());
-  VtuSeries series(dir.path().string());
+  VtuSeries series(dir.path().string(), "result", {.encoding = VtuEncoding::Ascii});
   series.write(world.fibres(), world.fibres().q, world.time(), &c);
   series.write(world.fibres(), world.fibres().q, 2 * world.time());  // a frame without contacts
   const std::string xml = readFile(dir / "result_contacts_0000.vtu");

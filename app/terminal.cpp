@@ -1,0 +1,97 @@
+#include "app/terminal.h"
+
+#include "engine/contact_setup.h"
+#include "fibra/version.h"
+
+#include <tbb/info.h>
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+namespace fibra::terminal {
+namespace {
+
+std::string format(const char* fmt, auto... args) {
+  char line[512];
+  std::snprintf(line, sizeof line, fmt, args...);
+  return line;
+}
+
+double degrees(double rad) { return rad * 180 / std::numbers::pi; }
+
+std::string contactLine(const World& world) {
+  const SceneDef& s = world.scene();
+  if (!s.contact.enabled && s.tools.empty()) return "  contact: none\n";
+  const ContactParams c = resolveContact(world.fibres(), s);
+  std::string out;
+  if (c.fibres)
+    out += format("  contact: fibre-fibre, p_max %g mm, mu %g, theta_cross %g deg, "
+                  "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d\n",
+                  c.pMax, c.mu, degrees(c.thetaCross), degrees(c.thetaParallel),
+                  c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops);
+  if (!c.tools) return out;
+  const ToolStore& tools = world.tools();
+  out += format("  tools: %d\n", tools.size());
+  for (Index t = 0; t < tools.size(); ++t)
+    out += format("    %s: %s, mu %g, p_max %g mm\n", tools.name[t].c_str(),
+                  tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder", tools.friction[t],
+                  tools.pMax[t]);
+  return out;
+}
+
+}  // namespace
+
+std::string describeProblem(const World& world, const std::string& scene, int threads) {
+  const SceneDef& s = world.scene();
+  const FibreStore& f = world.fibres();
+  int increments = 0;
+  for (const StepDef& st : s.steps) increments += st.increments;
+  std::string out = format("fibra %s: %s\n", FIBRA_VERSION_STRING, scene.c_str());
+  out += format("  %d fibres, %d nodes, %d elements, %d DOFs\n", f.fibres(), f.nodes(),
+                f.elements(), 9 * f.nodes());
+  out += format("  %zu steps, %d increments, t = 0 .. %g\n", s.steps.size(), increments,
+                s.steps.empty() ? 0.0 : s.steps.back().endTime);
+  out += contactLine(world);
+  if (threads >= 0)
+    out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());
+  return out;
+}
+
+void printIteration(const Progress& p) {
+  std::fprintf(stderr, "  step %d  t = %-10.6g load %5.1f%%  iteration %2d  residual %.3e\n",
+               p.step + 1, p.time, 100 * p.loadFactor, p.iteration, p.residual);
+}
+
+void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
+  if (v == Verbosity::Quiet) return;
+  const StepDef& st = scene.steps[r.step];
+  std::string line = format("step %d/%zu  increment %d/%d  t = %-8.6g %2d iterations  "
+                            "residual %.2e",
+                            r.step + 1, scene.steps.size(), r.increment, st.increments, r.time,
+                            r.iterations, r.residual);
+  if (r.cutbacks > 0) line += format("  %d cutbacks", r.cutbacks);
+  const bool contact = scene.contact.enabled || !scene.tools.empty();
+  const ContactReport& c = r.contact;
+  if (contact)
+    line += format("  contact %d+%d (%d sliding), penetration %.2f p_max", c.elements,
+                   c.toolElements, c.sliding, c.maxPenetrationRatio);
+  if (contact && c.restarts > 0) line += format("  %d loop restarts", c.restarts);
+  std::fprintf(stderr, "%s  %.3g s\n", line.c_str(), r.timings.total);
+  if (r.cutbacks > 0) std::fprintf(stderr, "  cutback: %s\n", r.message.c_str());
+  if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
+    std::fprintf(stderr,
+                 "  note: the step ends %.3g of the reference force away from static equilibrium "
+                 "(viscous_force); hold the loads in a step with damping to let the state settle\n",
+                 r.viscousForce);
+  if (!contact || v != Verbosity::Verbose) return;
+  std::fprintf(stderr,
+               "  contact: %d zones, %d + %d tool elements (%d active, %d sliding), max "
+               "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts; detection: %d "
+               "passes, %d broadphase rebuilds, %d candidate pairs\n",
+               c.zones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
+               c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts, c.detections,
+               c.broadphaseRebuilds, c.candidatePairs);
+}
+
+}  // namespace fibra::terminal

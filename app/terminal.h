@@ -1,0 +1,22 @@
+// What the fibra program prints on stderr while it runs: a header with the problem's size, one
+// line per converged increment (or per Newton iteration with --verbose), and a closing summary.
+// Numbers are printed with %g (six significant digits) unless a column needs exponents.
+#pragma once
+
+#include "engine/world.h"
+
+#include <string>
+
+namespace fibra::terminal {
+
+enum class Verbosity { Quiet, Normal, Verbose };  // errors and summary; + increments; + iterations
+
+// Problem size and derived parameters: fibres, nodes, elements, DOFs, steps and increments,
+// tools, contact (the resolved p_max, mu, angles, penalty), threads. Each line starts with
+// "  " after a first line "fibra VERSION: SCENE".
+std::string describeProblem(const World& world, const std::string& scene, int threads);
+
+void printIteration(const Progress& p);
+void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v);
+
+}  // namespace fibra::terminal

@@ -1,0 +1,66 @@
+// The output files of a run, as the scene's output section asks: what `fibra run` writes, as a
+// library API, so that a program embedding fibra writes the same files in the same way.
+//
+//   fibra::World world(scene);
+//   fibra::clearOutputs(dir);                 // optional: remove a previous run's files
+//   fibra::Outputs out(dir, world);           // creates dir, writes frame 0, opens the history
+//   while (!world.finished()) {
+//     const fibra::StepReport r = world.step();
+//     if (r.status != fibra::StepStatus::Converged) break;
+//     out.increment(world, r);                // history row; a frame every output_every-th
+//   }
+//   out.finish(world);                        // last frame, final state, history closed
+//
+// Files in DIR (docs/SCENE.md, "What fibra run writes"): result.pvd with result_NNNN.vtu (the
+// fibres, part 0), result_contacts_NNNN.vtu (contact elements, part 1, with contact or tools) and
+// result_tools_NNNN.vtu (the tools' surfaces, part 2, with tools); history.csv (one row per
+// converged increment; history.csv.part until finish()); final_state.csv. Every file appears
+// whole or not at all (io/output_file.h). Serial: call from one thread, between world.step()
+// calls (not concurrently with them). Errors: std::runtime_error when a file cannot be written.
+#pragma once
+
+#include "engine/world.h"
+#include "io/history_writer.h"
+#include "io/vtu_writer.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fibra {
+
+// Removes from `dir` the files a run of fibra writes there (result.pvd, result_*.vtu,
+// history.csv, final_state.csv and their .part files) and nothing else; returns how many. A
+// missing directory is fine (0). Throws std::runtime_error when a file cannot be removed.
+int clearOutputs(const std::string& dir);
+
+class Outputs {
+ public:
+  // Creates `dir` when needed, writes the initial frame and the history's header. The VTU
+  // encoding is `encoding`, or the scene's output.vtu_format when nullopt. Throws
+  // std::runtime_error when `dir` cannot be created or a file cannot be written.
+  Outputs(const std::string& dir, const World& world,
+          std::optional<VtuEncoding> encoding = std::nullopt);
+  ~Outputs();
+
+  // After every converged increment: a history row, and a frame when the increment is an
+  // output_every-th one of its step or the step's last.
+  void increment(const World& world, const StepReport& report);
+  // At the end of a run (solved, failed or cancelled): the last converged state as a frame
+  // (unless it has one), final_state.csv, and history.csv closed (renamed from .part).
+  void finish(const World& world);
+
+  int frames() const;                       // VTU frames written so far
+  const std::string& dir() const { return dir_; }
+
+ private:
+  void frame(const World& world);
+  std::string dir_;
+  OutputDef def_;
+  std::optional<VtuSeries> vtu_;
+  std::optional<HistoryWriter> history_;
+  double framed_ = -1;  // pseudo-time of the last frame
+};
+
+}  // namespace fibra

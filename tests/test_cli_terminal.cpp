@@ -1,0 +1,133 @@
+// The fibra program's terminal: --version, check, the default one line per increment, --quiet,
+// the header and summary, and a re-run into a used output directory.
+#include "fibra/version.h"
+#include "scene_test_util.h"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <map>
+#include <regex>
+
+using namespace fibra::test;
+
+namespace {
+
+// Lines of `text` that match `pattern` (from their start).
+int countLines(const std::string& text, const std::string& pattern) {
+  const std::regex re(pattern);
+  std::istringstream in(text);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) n += std::regex_search(line, re) ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("fibra --version prints the version of the build") {
+  TempDir scratch("cli_version");
+  const RunResult r = runFibra({"--version"}, scratch);
+  CHECK(r.status == 0);
+  CHECK(r.output == std::string("fibra ") + FIBRA_VERSION_STRING + "\n");
+  CHECK(std::string(FIBRA_VERSION_STRING) ==
+        std::to_string(FIBRA_VERSION_MAJOR) + "." + std::to_string(FIBRA_VERSION_MINOR));
+}
+
+TEST_CASE("fibra check validates a scene and prints its size without solving") {
+  TempDir scratch("cli_check");
+  const std::string scene = sourcePath("samples/bundle_squeeze.json");
+  const RunResult r = runFibra({"check", scene}, scratch);
+  CHECK(r.status == 0);
+  CHECK(r.output.starts_with(std::string("fibra ") + FIBRA_VERSION_STRING + ": " + scene + "\n"));
+  CHECK(countLines(r.output, R"(^  7 fibres, \d+ nodes, \d+ elements, \d+ DOFs$)") == 1);
+  CHECK(countLines(r.output, R"(^  contact: fibre-fibre, p_max [0-9.e-]+ mm, mu 0.1, )") == 1);
+  CHECK(countLines(r.output, R"(^  tools: 2$)") == 1);
+  CHECK(countLines(r.output, R"(^    (bottom|top): plane, mu 0.1, p_max [0-9.e-]+ mm$)") == 2);
+  CHECK(r.output.ends_with("fibra: " + scene + ": the scene is valid\n"));
+  CHECK(countLines(r.output, "^step ") == 0);  // nothing solved
+  const std::string bad = sourcePath("samples/bad/negative_radius.json");
+  const RunResult b = runFibra({"check", bad}, scratch);
+  CHECK(b.status == 2);
+  CHECK(b.output == "fibra: error: " + bad + ": fibres[0].radius: must be > 0, got -1\n");
+}
+
+TEST_CASE("fibra run prints a header, one line per increment and a summary, --quiet only the summary") {
+  TempDir scratch("cli_lines");
+  const std::string scene = sourcePath("samples/cantilever.json"), out = scratch / "out";
+  const RunResult r = runFibra({"run", scene, "--out", out}, scratch);
+  REQUIRE(r.status == 0);
+  CHECK(r.output.starts_with(std::string("fibra ") + FIBRA_VERSION_STRING + ": " + scene + "\n"));
+  CHECK(countLines(r.output, R"(^  1 fibres, 21 nodes, 10 elements, 189 DOFs$)") == 1);
+  CHECK(countLines(r.output, R"(^step 1/1  increment \d+/10  t = )") == 10);
+  CHECK(countLines(r.output, "iteration ") == 0);
+  CHECK(countLines(r.output, R"(^fibra: solved: t = 1, 10 increments, \d+ Newton iterations, )"
+                             R"(0 cutbacks, [0-9.e-]+ s; 11 frames, history and final state in )") ==
+        1);
+  const RunResult q = runFibra({"run", scene, "--out", out, "--quiet"}, scratch);
+  REQUIRE(q.status == 0);
+  CHECK(q.output.starts_with("fibra: solved: t = 1, 10 increments"));
+  CHECK(countLines(q.output, ".") == 1);
+}
+
+TEST_CASE("fibra run into a used --out replaces the earlier run's files and keeps the others") {
+  TempDir scratch("cli_rerun");
+  fs::create_directories(scratch.path());
+  const std::string out = scratch / "out";
+  REQUIRE(runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out, "--quiet"},
+                   scratch).status == 0);
+  REQUIRE(fs::exists(fs::path(out) / "result_0010.vtu"));
+  writeFile(out + "/notes.txt", "mine");
+  auto scene = nlohmann::json::parse(readFile(sourcePath("samples/cantilever.json")), nullptr,
+                                     true, true);
+  scene["steps"][0]["output_every"] = 5;  // frames 0, 5, 10: written as 0000, 0001, 0002
+  writeFile(scratch / "sparse.json", scene.dump());
+  const RunResult r =
+      runFibra({"run", scratch / "sparse.json", "--out", out, "--vtu-format", "ascii"}, scratch);
+  REQUIRE(r.status == 0);
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(out)) files.push_back(e.path().filename().string());
+  std::sort(files.begin(), files.end());
+  CHECK(files == std::vector<std::string>{"final_state.csv", "history.csv", "notes.txt",
+                                          "result.pvd", "result_0000.vtu", "result_0001.vtu",
+                                          "result_0002.vtu"});
+  CHECK(readFile(out + "/result_0002.vtu").find("format=\"ascii\"") != std::string::npos);
+  CHECK(readFile(out + "/notes.txt") == "mine");
+  const RunResult bad = runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out,
+                                  "--vtu-format", "xml"}, scratch);
+  CHECK(bad.status == 2);
+  CHECK(bad.output.starts_with("fibra: --vtu-format: expected binary or ascii, got 'xml'\n"));
+}
+
+TEST_CASE("fibra --trace writes every span's start and length to the nanosecond, nested") {
+  TempDir scratch("cli_trace");
+  fs::create_directories(scratch.path());
+  const std::string trace = scratch / "t.json";
+  REQUIRE(runFibra({"run", sourcePath("samples/roller_drag.json"), "--out", scratch / "out",
+                    "--quiet", "--trace", trace, "--threads", "2"},
+                   scratch).status == 0);
+  const auto json = nlohmann::json::parse(readFile(trace));
+  const std::regex exact(R"("ts":\d+\.\d{3},"dur":\d+\.\d{3})");
+  const std::string text = readFile(trace);
+  const auto spans = json.at("traceEvents");
+  REQUIRE(spans.size() > 100);
+  CHECK(std::distance(std::sregex_iterator(text.begin(), text.end(), exact),
+                      std::sregex_iterator()) == std::ptrdiff_t(spans.size()));
+  // Per thread, spans sorted by start either nest in the enclosing one or follow it.
+  std::map<int, std::vector<std::pair<double, double>>> byThread;
+  for (const auto& e : spans)
+    byThread[e.at("tid").get<int>()].emplace_back(e.at("ts").get<double>(),
+                                                  e.at("ts").get<double>() + e.at("dur").get<double>());
+  int crossed = 0;
+  for (auto& [thread, list] : byThread) {
+    std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) {
+      return a.first < b.first || (a.first == b.first && a.second > b.second);
+    });
+    std::vector<double> open;  // ends of the enclosing spans
+    for (const auto& [begin, end] : list) {
+      while (!open.empty() && begin >= open.back() - 0.002) open.pop_back();
+      if (!open.empty() && end > open.back() + 0.002) ++crossed;
+      open.push_back(end);
+    }
+  }
+  CHECK(crossed == 0);
+}
