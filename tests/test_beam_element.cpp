@@ -101,7 +101,7 @@ TEST_CASE("beam element tangent matches central finite differences") {
       }
 }
 
-TEST_CASE("rigid motions give zero energy and force; rotation keeps the energy") {
+TEST_CASE("rigid motions give zero energy and force, rotation keeps the energy") {
   for (auto kind : {GeometryKind::Line, GeometryKind::Helix}) {
     const OneFibre o = makeFibre(kind, 2, {AxialRule::Full, SectionRule::Quadrature, 3, 8});
     const Eigen::Matrix3d R =

@@ -96,7 +96,7 @@ TEST_CASE("particles lie on the deformed section outlines, facing the other sect
   CHECK(checked >= 40);
 }
 
-TEST_CASE("normals are unit and point from J to I; swapping I and J flips N and keeps gN") {
+TEST_CASE("normals are unit and point from J to I, swapping I and J flips N and keeps gN") {
   for (unsigned seed : {41u, 42u}) {
     const FibreStore fs = seed == 41 ? fixtures::crossing(seed) : fixtures::nearlyParallel(seed);
     const Eigen::VectorXd q = fixtures::deformed(fs, seed, 0.005);
@@ -235,7 +235,7 @@ TEST_CASE("zero-length zone: one proximate test point gives one element at zeta 
   CHECK(d.el.gap[0] == doctest::Approx(0.95 * R));
 }
 
-TEST_CASE("parameter defaults follow the radii and element lengths; given values win") {
+TEST_CASE("parameter defaults follow the radii and element lengths, given values win") {
   FibreStore fs = pair(fixtures::polylineFibre("a", 0.05, 5, 2, {Vec3(0, 0, 0), Vec3(1, 0, 0)}),
                        fixtures::polylineFibre("b", 0.02, 4, 2, {Vec3(0, 1, 0), Vec3(2, 1, 0)}));
   const ContactParams p = defaults(fs);

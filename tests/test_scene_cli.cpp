@@ -73,7 +73,7 @@ TEST_CASE("fibra: a bad scene exits 2 with file, field and reason, and creates n
   CHECK_FALSE(fs::exists(scratch / "out"));
 }
 
-TEST_CASE("fibra describe prints the scene's stages; a bad scene or a bad call exits 2") {
+TEST_CASE("fibra describe prints the scene's stages, a bad scene or a bad call exits 2") {
   TempDir scratch("cli_describe");
   const RunResult r = runFibra({"describe", sourcePath("samples/roller_drag.json")}, scratch);
   CHECK(r.status == 0);
