@@ -77,6 +77,7 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
     line += format("  contact %d+%d (%d sliding), penetration %.2f p_max", c.elements,
                    c.toolElements, c.sliding, c.maxPenetrationRatio);
   if (contact && c.restarts > 0) line += format("  %d loop restarts", c.restarts);
+  if (contact && c.loopCapped) line += "  loop A capped";
   std::fprintf(stderr, "%s  %.3g s\n", line.c_str(), r.timings.total);
   if (r.cutbacks > 0) std::fprintf(stderr, "  cutback: %s\n", r.message.c_str());
   if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
@@ -92,6 +93,12 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
                c.zones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
                c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts, c.detections,
                c.broadphaseRebuilds, c.candidatePairs);
+  if (scene.contact.enabled)
+    std::fprintf(stderr,
+                 "  contact set at acceptance: true overlap %.3g mm; a new detection changes %d "
+                 "zones, gaps by up to %.2f p_max, particles by up to %.3f R%s\n",
+                 c.maxOverlap, c.redetectZoneChanges, c.redetectGapChange,
+                 c.redetectParticleShift, c.loopCapped ? "; loop A stopped at its cap" : "");
 }
 
 }  // namespace fibra::terminal

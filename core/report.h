@@ -50,6 +50,14 @@ struct ContactReport {
   double maxPenetration = 0;   // over all elements, mm
   double maxPenetrationRatio = 0;  // max over zones of penetration / p_max
   double stabilisation = 0;    // |stabilisation forces| / F_ref at convergence
+  // the contact set at acceptance, against a detection from the accepted state
+  // (engine/contact_loops.h, systems/contact_queries.h)
+  bool loopCapped = false;     // loop A stopped at its cap without meeting its exit test
+  double maxOverlap = 0;       // true overlap r_I + r_J - centre distance at the closest
+                               // sections (deformed radii r), max over the pairs found, mm
+  int redetectZoneChanges = 0; // zones that appear, vanish or change their element count
+  double redetectGapChange = 0;     // max |g_N new - g_N used| / p_max over paired elements
+  double redetectParticleShift = 0; // max particle shift (arc length and section) / R, same
   // detection, in the last attempt
   int detections = 0;          // detection passes (loop A passes of every attempt)
   int broadphaseRebuilds = 0;  // of them, those that rebuilt the broadphase's candidate set

@@ -48,6 +48,19 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
   return nr;
 }
 
+// The contact set the accepted state was solved with, against a detection from that state (the
+// stores are put back afterwards; the detection cache holds nothing results depend on): the true
+// overlap of the fibres and how far the set is from the one a new pass would use. False when
+// cancelled.
+bool checkContactSet(WorldState& w, double t, ContactReport& report) {
+  ContactState used = w.trial;
+  runStage(w, w.pipeline.detect, t);
+  report.maxOverlap = trueOverlap(w.fibres, w.fibres.q, w.trial.elements);
+  compareContactSets(w.fibres, used, w.trial, report);
+  w.trial = std::move(used);
+  return !w.cancel();
+}
+
 }  // namespace
 
 NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSettings& settings,
@@ -80,11 +93,13 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     const double change = std::max(w.fibreStats.penaltyChange, w.toolStats.penaltyChange);
     // The elements of this pass were detected at qDetected: if the fibres have hardly moved
     // since, a new detection would find the same set.
-    if (a == s.maxDetectionLoops ||
-        (largestMotion(w.fibres.q, qDetected) <= s.particleTolerance * minRadius(w.fibres) &&
-         change <= s.penaltyTolerance)) {
+    const bool settled =
+        largestMotion(w.fibres.q, qDetected) <= s.particleTolerance * minRadius(w.fibres) &&
+        change <= s.penaltyTolerance;
+    if (settled || a == s.maxDetectionLoops) {
       w.trial.zones.penalty = zonePenalty;
       w.trial.toolZones.penalty = toolPenalty;
+      report.loopCapped = !settled;
       break;
     }
     qDetected = w.fibres.q;
@@ -99,6 +114,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
       ++report.restarts;
     }
   }
+  if (s.fibres && !checkContactSet(w, tTry, report)) return cancelled(nr);
   return nr;
 }
 

@@ -83,7 +83,9 @@ HistoryColumns contactColumns(const World& world) {
            "contact.sliding", "contact.max_penetration", "contact.max_penetration_ratio",
            "contact.detection_loops", "contact.normal_loops", "contact.restarts",
            "contact.stabilisation", "contact.detections", "contact.broadphase_rebuilds",
-           "contact.candidate_pairs"},
+           "contact.candidate_pairs", "contact.loop_a_capped", "contact.max_overlap",
+           "contact.redetect_zone_changes", "contact.redetect_gap_change",
+           "contact.redetect_particle_shift"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             const ContactReport& c = r.contact;
             row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
@@ -91,7 +93,9 @@ HistoryColumns contactColumns(const World& world) {
                                    c.maxPenetrationRatio, double(c.detectionLoops),
                                    double(c.normalLoops), double(c.restarts), c.stabilisation,
                                    double(c.detections), double(c.broadphaseRebuilds),
-                                   double(c.candidatePairs)});
+                                   double(c.candidatePairs), double(c.loopCapped),
+                                   c.maxOverlap, double(c.redetectZoneChanges),
+                                   c.redetectGapChange, c.redetectParticleShift});
           }};
 }
 

@@ -1,8 +1,11 @@
 #include "systems/contact_queries.h"
 
+#include "systems/contact_geometry.h"
 #include "systems/particle.h"
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 
 namespace fibra {
 
@@ -47,6 +50,58 @@ void fillContactReport(const ContactParams& p, const ContactState& s, ContactRep
   for (Index e = 0; e < s.elements.size(); ++e) add(s.forces, e, s.zones.pMax[s.elements.zone[e]]);
   for (Index i = 0; i < s.toolElements.size(); ++i)
     add(s.toolForces, i, s.toolZones.pMax[s.toolElements.zone[i]]);
+}
+
+double trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactElementStore& el) {
+  double overlap = 0;
+  for (Index e = 0; e < el.size(); ++e) {
+    const Section I = contactSection(fs, q, el.fibreI[e], el.sI[e]);
+    const Section J = contactSection(fs, q, el.fibreJ[e], el.sJ[e]);
+    const double rI = (el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2).norm();
+    const double rJ = (el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2).norm();
+    overlap = std::max(overlap, rI + rJ - (I.x0 - J.x0).norm());
+  }
+  return overlap;
+}
+
+namespace {
+
+double shift(double ds, double dxi1, double dxi2, double R) {
+  return std::sqrt(ds * ds + dxi1 * dxi1 + dxi2 * dxi2) / R;
+}
+
+}  // namespace
+
+void compareContactSets(const FibreStore& fs, const ContactState& used, const ContactState& fresh,
+                        ContactReport& r) {
+  const ZoneStore &zu = used.zones, &zf = fresh.zones;
+  const ContactElementStore &eu = used.elements, &ef = fresh.elements;
+  std::unordered_map<std::uint64_t, Index> usedZone;
+  for (Index z = 0; z < zu.size(); ++z) usedZone.emplace(zu.id[z], z);
+  r.redetectZoneChanges = 0;
+  r.redetectGapChange = r.redetectParticleShift = 0;
+  Index paired = 0;
+  for (Index z = 0; z < zf.size(); ++z) {
+    const auto it = usedZone.find(zf.id[z]);
+    if (it == usedZone.end() || zu.elementCount[it->second] != zf.elementCount[z]) {
+      ++r.redetectZoneChanges;
+      continue;
+    }
+    ++paired;
+    const Index o = it->second;
+    for (Index k = 0; k < zf.elementCount[z]; ++k) {
+      const Index a = zu.firstElement[o] + k, b = zf.firstElement[z] + k;
+      if (std::min(ef.gap[b], used.forces.gap[a]) >= 0) continue;  // open in both
+      r.redetectGapChange =
+          std::max(r.redetectGapChange, std::abs(ef.gap[b] - used.forces.gap[a]) / zu.pMax[o]);
+      const double sI = shift(ef.sI[b] - eu.sI[a], ef.xiI1[b] - eu.xiI1[a],
+                              ef.xiI2[b] - eu.xiI2[a], fs.radius[ef.fibreI[b]]);
+      const double sJ = shift(ef.sJ[b] - eu.sJ[a], ef.xiJ1[b] - eu.xiJ1[a],
+                              ef.xiJ2[b] - eu.xiJ2[a], fs.radius[ef.fibreJ[b]]);
+      r.redetectParticleShift = std::max({r.redetectParticleShift, sI, sJ});
+    }
+  }
+  r.redetectZoneChanges += int(zu.size() - paired);  // used zones the fresh set lost
 }
 
 }  // namespace fibra

@@ -9,6 +9,19 @@
 // deepestDetected     the largest penetration of the elements at their detection (or last
 //                     normal update), as a multiple of their zone's p_max.
 // fillContactReport   counts (zones, elements, active, sliding) and the largest penetration.
+// trueOverlap         over the elements of a detection from the state q (closest sections, the
+//                     particles re-located on the deformed outlines): max of r_I + r_J - d, d =
+//                     |x0I - x0J| the distance of the section centres, r = |x - x0| the deformed
+//                     radius of each section towards the other (its particle's distance from its
+//                     centre); 0 when none overlaps; mm. Independent of the elements a state was
+//                     solved with: it measures what they may under-report.
+// compareContactSets  a detection from the accepted state (`fresh`) against the set the state
+//                     was solved with (`used`): zones paired by id; zones without a partner or
+//                     with another element count are counted; elements of paired zones paired
+//                     by index, those closed in either set: the largest |g_fresh - g_used| /
+//                     p_max and the largest particle
+//                     shift sqrt(ds^2 + |dxi|^2) / R of either side (s arc length, xi section
+//                     coordinates, R the side's radius).
 #pragma once
 
 #include "components/contact_params.h"
@@ -33,5 +46,12 @@ double deepestDetected(const ContactState& state);
 
 // Fills zones, elements, toolElements, active, sliding, maxPenetration, maxPenetrationRatio.
 void fillContactReport(const ContactParams& params, const ContactState& state, ContactReport& r);
+
+double trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
+                   const ContactElementStore& detected);
+
+// Fills r.redetectZoneChanges, redetectGapChange, redetectParticleShift.
+void compareContactSets(const FibreStore& fibres, const ContactState& used,
+                        const ContactState& fresh, ContactReport& r);
 
 }  // namespace fibra

@@ -68,6 +68,29 @@ TEST_CASE("a fibre dragged along a parallel one slides at mu q L with every load
   CHECK(checked >= 5);
 }
 
+TEST_CASE("the true overlap at acceptance is measured from the centrelines and the radii") {
+  // B's centreline against A's (the x axis): at every node of B, 2R - |(y, z)|; the reported
+  // true overlap (a detection from the accepted state) must match its largest value.
+  World w(draggedFibre(0.2));
+  while (!w.finished()) {
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    if (w.time() < 0.3) continue;
+    const FibreStore& fs = w.fibres();
+    double nodes = -1;
+    for (Index n = fs.firstNode[1]; n < fs.firstNode[1] + fs.nodeCount[1]; ++n) {
+      const Vec3 x = x0Of(fs.q, n);
+      nodes = std::max(nodes, 0.2 - std::hypot(x.y(), x.z()));
+    }
+    CAPTURE(w.time());
+    CHECK(nodes > 0);
+    CHECK(r.contact.maxOverlap == doctest::Approx(nodes).epsilon(0.05));
+    CHECK(r.contact.maxOverlap == doctest::Approx(r.contact.maxPenetration).epsilon(0.05));
+    CHECK(r.contact.redetectZoneChanges == 0);
+    CHECK(r.contact.redetectGapChange < 0.1);
+  }
+}
+
 TEST_CASE("frictionless parallel contact transmits no axial force while the fibre slides") {
   World w(draggedFibre(0));
   while (!w.finished()) {
