@@ -5,19 +5,17 @@
 #include "systems/tool_geometry.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace fibra {
 namespace {
 
-// Particle facing the tool at (element, z): outline point in the direction -N.
-void addContact(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
-                const RigidMotion& m, double proximity, ToolContactStore& c) {
+// A contact element for the particle (element, z, xi): its normal is the surface normal at the
+// closest point, its tool point the surface point under it.
+void addParticle(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
+                 const Eigen::Vector2d& xi, const RigidMotion& m, ToolContactStore& c) {
   const Index f = fs.elementFibre[e];
   const Section sec = sectionAt(fs, fs.q, {e, z});
-  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
-  const double reach = std::isfinite(proximity) ? proximity : std::max(fs.radius[f], 0.5 * elementLength(fs, f));
-  if (centre.distance > fs.radius[f] + reach) return;
-  const Eigen::Vector2d xi = outlinePoint(sec.g1, sec.g2, fs.radius[f], -centre.normal);
   const Vec3 x = sec.x0 + xi(0) * sec.g1 + xi(1) * sec.g2;
   const SurfacePoint sp = closestSurfacePoint(tools, tool, m, x);
   const RigidMotion inverse{m.R.transpose(), m.centre, -m.R.transpose() * m.shift};
@@ -35,6 +33,37 @@ void addContact(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
   c.gRev0.push_back(Vec3::Zero());
 }
 
+double reachOf(const FibreStore& fs, Index f, double proximity) {
+  return std::isfinite(proximity) ? proximity : std::max(fs.radius[f], 0.5 * elementLength(fs, f));
+}
+
+// Lateral contact at (element, z): the outline point facing the tool (direction -N).
+void addLateral(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
+                const RigidMotion& m, double proximity, ToolContactStore& c) {
+  const Index f = fs.elementFibre[e];
+  const Section sec = sectionAt(fs, fs.q, {e, z});
+  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
+  if (centre.distance > fs.radius[f] + reachOf(fs, f, proximity)) return;
+  addParticle(fs, tools, tool, e, z, outlinePoint(sec.g1, sec.g2, fs.radius[f], -centre.normal), m, c);
+}
+
+// The flat end face of a fibre at (element, z = +-1): its centre and kEndRim points of its rim
+// (the face is a disc of the section's radius; no cap reaches past it).
+constexpr int kEndRim = 8;
+void addEndFace(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
+                const RigidMotion& m, double proximity, ToolContactStore& c) {
+  const Index f = fs.elementFibre[e];
+  const Section sec = sectionAt(fs, fs.q, {e, z});
+  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
+  if (centre.distance > fs.radius[f] + reachOf(fs, f, proximity)) return;
+  addParticle(fs, tools, tool, e, z, Eigen::Vector2d::Zero(), m, c);
+  for (int k = 0; k < kEndRim; ++k) {
+    const double phi = 2 * std::numbers::pi * k / kEndRim;
+    addParticle(fs, tools, tool, e, z,
+                fs.radius[f] * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
+  }
+}
+
 }  // namespace
 
 void detectToolContacts(const FibreStore& fs, const ToolStore& tools, const ContactParams& params,
@@ -46,7 +75,12 @@ void detectToolContacts(const FibreStore& fs, const ToolStore& tools, const Cont
       const int order = fs.order[fs.elementFibre[e]];
       const double zs[2] = {-0.5, 0.5};
       for (int k = 0; k < order; ++k)
-        addContact(fs, tools, t, e, order == 2 ? zs[k] : 0.0, m, params.toolProximity, c);
+        addLateral(fs, tools, t, e, order == 2 ? zs[k] : 0.0, m, params.toolProximity, c);
+    }
+    for (Index f = 0; f < fs.fibres(); ++f) {
+      const Index first = fs.firstElement[f], last = first + fs.elementCount[f] - 1;
+      addEndFace(fs, tools, t, first, -1, m, params.toolProximity, c);
+      addEndFace(fs, tools, t, last, 1, m, params.toolProximity, c);
     }
   }
 }

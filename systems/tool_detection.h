@@ -11,6 +11,9 @@
 // arrives); its particle is the outline point facing the tool (paper Fig. 4 with the direction
 // -N), its normal N the surface normal at the closest point (towards the fibre), its tool point
 // the surface point under the particle, kept as a material point of the tool.
+// A fibre is cut flat at its end sections: at each end whose section centre is within R + Delta
+// of the surface, the end face's centre and 8 points of its rim (xi = R (cos phi, sin phi)) are
+// particles too, so an end pushed onto a tool stands on it.
 // Serial, tools then elements in order: tool contacts are few.
 #pragma once
 
