@@ -58,6 +58,9 @@ enum ContactFallback : std::uint8_t {
   kFallbackParticleI = 8,    // other centre on I's axis: particle I from the normal direction
   kFallbackParticleJ = 16,   // same on J
   kFallbackNormal = 32,      // centres coincide and fibres parallel: N from the particles
+  kEndFaceI = 64,            // I's section is an end of I and J lies beyond it: I's particle on
+                             // the flat end face, N normal to J's axis (systems/contact_elements.h)
+  kEndFaceJ = 128,           // the same with I and J swapped
 };
 
 struct ContactElementStore {

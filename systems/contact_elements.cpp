@@ -94,6 +94,30 @@ void particles(const Section& I, const Section& J, double RI, double RJ, double 
   }
 }
 
+// End faces: a fibre is a cylinder cut flat at its end sections. When the section S of fibre f
+// at s is one of its ends and the other section's centre c lies beyond that end's plane, the
+// particle is the point of the end face closest to c: the projection of c onto the face, kept
+// within the rim (|xi| <= R). False otherwise.
+bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
+                     double R, double xi[2]) {
+  const double L = fs.length[f], tol = 1e-9 * L;
+  const double outward = s <= tol ? -1 : s >= L - tol ? 1 : 0;
+  if (outward == 0 || (c - S.x0).dot(outward * S.dx0ds.normalized()) <= 1e-9 * R) return false;
+  Eigen::Matrix2d M;
+  M << S.g1.dot(S.g1), S.g1.dot(S.g2), S.g1.dot(S.g2), S.g2.dot(S.g2);
+  const Vec3 d = c - S.x0;
+  Eigen::Vector2d m = M.inverse() * Eigen::Vector2d(S.g1.dot(d), S.g2.dot(d));
+  if (m.norm() > R) m *= R / m.norm();
+  xi[0] = m(0), xi[1] = m(1);
+  return true;
+}
+
+// The other side's particle against an end face at x: J's outline point towards x (kept as it
+// was when x lies on J's axis).
+void facingParticle(const Section& J, double RJ, const Vec3& x, double xi[2]) {
+  outlinePoint(J.g1, J.g2, RJ, x - J.x0, xi);
+}
+
 struct ElementSides {
   double sI, sJ;
   std::uint8_t flags;
@@ -149,6 +173,19 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     double xiI[2], xiJ[2];
     std::uint8_t flags = sides.flags;
     particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
+    if (g.I != g.J) {
+      double xiE[2];
+      const bool endI = endFaceParticle(fs, g.I, sides.sI, I, J.x0, fs.radius[g.I], xiE);
+      if (endI) {
+        xiI[0] = xiE[0], xiI[1] = xiE[1];
+        facingParticle(J, fs.radius[g.J], I.x0 + xiE[0] * I.g1 + xiE[1] * I.g2, xiJ);
+        flags |= kEndFaceI;
+      } else if (endFaceParticle(fs, g.J, sides.sJ, J, I.x0, fs.radius[g.J], xiE)) {
+        xiJ[0] = xiE[0], xiJ[1] = xiE[1];
+        facingParticle(I, fs.radius[g.I], J.x0 + xiE[0] * J.g1 + xiE[1] * J.g2, xiI);
+        flags |= kEndFaceJ;
+      }
+    }
     el.zone[e] = z;
     el.zeta[e] = zeta;
     el.fibreI[e] = g.I;
@@ -160,7 +197,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.xiJ1[e] = xiJ[0];
     el.xiJ2[e] = xiJ[1];
     const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J],
-                                      p.thetaParallel, p.thetaCross);
+                                      p.thetaParallel, p.thetaCross, flags);
     el.normal[e] = ng.normal;
     el.gap[e] = ng.gap;
     el.theta[e] = ng.theta;

@@ -19,6 +19,13 @@
 //     (clamped to the fibre), bisection as safeguard;
 //   particles: on each section, the outline point x0 + xi1 g1 + xi2 g2, |xi| = R, in the
 //     direction of the other section's centre projected onto span(g1, g2)        (eq. 9, Fig. 4).
+//   Flat ends (two different fibres): when a section is an end of its fibre and the other
+//     section's centre lies beyond that end's plane (by more than 1e-9 R), the particle is the
+//     point of the end face closest to that centre, xi = m clamped to |xi| <= R, G m the
+//     projection of the centre onto the section plane; the other particle is the outline point
+//     facing it; N is normal to the other fibre's axis through it (kEndFaceI / kEndFaceJ,
+//     systems/contact_normals.h). So no contact exists past an end, and an end's face and rim
+//     touch the other fibre's side.
 //
 // Degenerate cases (documented in docs/CONTACT.md, flagged in ContactElementStore::fallback):
 //   t_int = 0 (zero-length zone, or cancelling pieces): t_int := bisector of the tangents

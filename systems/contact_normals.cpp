@@ -16,10 +16,23 @@ namespace fibra {
 
 NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
-                       double thetaCross) {
+                       double thetaCross, std::uint8_t flags) {
   const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
   const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
   const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
+  if (flags & (kEndFaceI | kEndFaceJ)) {
+    // An end face against the other fibre's side: N normal to that fibre's axis, through the
+    // face particle (from J to I).
+    const bool onI = flags & kEndFaceI;
+    const Vec3 t = onI ? tJ : tI;
+    const Vec3 r = onI ? Vec3(xI - J.x0) : Vec3(I.x0 - xJ);
+    Vec3 n = r - r.dot(t) * t;
+    const double theta = std::atan2(tI.cross(tJ).norm(), std::abs(tI.dot(tJ)));
+    if (n.norm() > 1e-12 * (RI + RJ)) {
+      n.normalize();
+      return {n, (xI - xJ).dot(n), theta, 0, false};
+    }
+  }
   // Centre-to-centre vector without its component along the mean tangent: the sections of a
   // pair drift apart along parallel fibres as they slide, and that axial offset must not tilt
   // the normal (a tilted normal turns normal force into axial force, docs/CONTACT.md).
@@ -67,7 +80,8 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
           const Section J = contactSection(fs, q, fJ, el.sJ[e]);
           const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
           const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
-                                            params.thetaParallel, params.thetaCross);
+                                            params.thetaParallel, params.thetaCross,
+                                            el.fallback[e]);
           turned = std::max(turned, std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
           el.normal[e] = ng.normal;
           el.gap[e] = ng.gap;

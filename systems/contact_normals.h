@@ -42,10 +42,12 @@ struct NormalGap {
   bool fallback;
 };
 
-// Eqs. 10-11 for one pair of sections and particles (radii RI, RJ, mm).
+// Eqs. 10-11 for one pair of sections and particles (radii RI, RJ, mm). With kEndFaceI in
+// `flags` (ContactFallback) I's particle lies on I's flat end face and N is normal to J's axis
+// through it, N = P_tJ (x^I - x0J) / |...|; kEndFaceJ likewise with N = P_tI (x0I - x^J) / |...|.
 NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
-                       double thetaCross);
+                       double thetaCross, std::uint8_t flags = 0);
 
 // Loop B: eqs. 10-11 again at the state q for the same particles; the friction reference's slip
 // g_rev,0 re-projected onto the new tangent plane; stats.normalTurn = the largest angle a

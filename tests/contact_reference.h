@@ -243,8 +243,45 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       e.xiI[0] = -fs.radius[I], e.xiI[1] = 0;
     if (!particle(sJ, fs.radius[J], sI.x0 - sJ.x0, e.xiJ) && !particle(sJ, fs.radius[J], n, e.xiJ))
       e.xiJ[0] = fs.radius[J], e.xiJ[1] = 0;
-    // eq. 10
+    // End faces: a section at an end of its fibre whose partner's centre lies beyond the end
+    // plane takes its particle on the flat face (that centre projected onto the section plane,
+    // within the rim); the partner's particle faces it; N is normal to the partner's axis.
+    auto face = [&](Index f, double s, const Section& c, const Vec3& o, double xi[2]) {
+      const double L = fs.length[f];
+      const double out = s <= 1e-9 * L ? -1.0 : s >= L - 1e-9 * L ? 1.0 : 0.0;
+      if (out == 0 || (o - c.x0).dot(out * c.dx0ds.normalized()) <= 1e-9 * fs.radius[f]) return false;
+      Eigen::Matrix<double, 3, 2> G;
+      G << c.g1, c.g2;
+      Eigen::Vector2d m = G.colPivHouseholderQr().solve(o - c.x0);
+      if (m.norm() > fs.radius[f]) m *= fs.radius[f] / m.norm();
+      xi[0] = m(0), xi[1] = m(1);
+      return true;
+    };
     e.theta = std::acos(std::min(1.0, std::abs(tI.dot(tJ))));
+    if (I != J) {
+      const auto point = [](const Section& c, const double xi[2]) { return Vec3(c.x0 + xi[0] * c.g1 + xi[1] * c.g2); };
+      int side = 0;
+      if (face(I, e.sI, sI, sJ.x0, e.xiI)) {
+        side = 1;
+        particle(sJ, fs.radius[J], point(sI, e.xiI) - sJ.x0, e.xiJ);
+      } else if (face(J, e.sJ, sJ, sI.x0, e.xiJ)) {
+        side = 2;
+        particle(sI, fs.radius[I], point(sJ, e.xiJ) - sI.x0, e.xiI);
+      }
+      if (side) {
+        const Vec3 pI = point(sI, e.xiI), pJ = point(sJ, e.xiJ);
+        const Vec3 axis = side == 1 ? tJ : tI, r = side == 1 ? Vec3(pI - sJ.x0) : Vec3(sI.x0 - pJ);
+        e.fallback |= side == 1 ? kEndFaceI : kEndFaceJ;
+        const Vec3 nf = r - r.dot(axis) * axis;
+        if (nf.norm() > 1e-12 * (fs.radius[I] + fs.radius[J])) {  // else (end to end): eq. 10
+          e.normal = nf.normalized();
+          e.gap = (pI - pJ).dot(e.normal);
+          out.push_back(e);
+          continue;
+        }
+      }
+    }
+    // eq. 10
     const double w = std::clamp((e.theta - p.thetaParallel) / (p.thetaCross - p.thetaParallel), 0.0, 1.0);
     // The centre-to-centre direction without its component along the mean tangent (the
     // sections' axial offset, systems/contact_normals.h).

@@ -13,7 +13,7 @@ namespace {
 
 struct Coverage {
   int zones = 0, elements = 0, checkedElements = 0, zeroLength = 0, sectionFallbacks = 0;
-  int tangentFallbacks = 0, crossing = 0, parallel = 0, blended = 0;
+  int tangentFallbacks = 0, crossing = 0, parallel = 0, blended = 0, endFaces = 0;
 };
 
 void compareElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
@@ -32,7 +32,8 @@ void compareElements(const FibreStore& fs, const Eigen::VectorXd& q, const Conta
     CAPTURE(z);
     CAPTURE(k);
     CHECK(el.zone[e] == z);
-    CHECK((el.fallback[e] & 7) == r.fallback);
+    CHECK((el.fallback[e] & (7 | kEndFaceI | kEndFaceJ)) == r.fallback);
+    cov.endFaces += (r.fallback & (kEndFaceI | kEndFaceJ)) != 0;
     CHECK(std::abs(el.sI[e] - r.sI) <= 1e-8);
     CHECK(std::abs(el.sJ[e] - r.sJ) <= 1e-8);
     CHECK(std::abs(el.xiI1[e] - r.xiI[0]) <= 1e-8);
@@ -141,6 +142,7 @@ TEST_CASE("contact detection matches the brute-force reference: contacts at elem
   const Coverage c = compareWithReference(fs, fs.q, defaults(fs));
   CHECK(c.zones >= 10);
   CHECK(c.zeroLength >= 1);  // the end-to-end pair meets at one test point
+  CHECK(c.endFaces >= 1);    // an end face against another fibre's side
 }
 
 TEST_CASE("contact detection matches the brute-force reference: mixed orders and self-contact") {

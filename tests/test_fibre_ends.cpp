@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 using namespace fibra;
 
@@ -51,4 +52,88 @@ TEST_CASE("a fibre's flat end face rests on a plane and carries EA x its shorten
     CHECK(force == doctest::Approx(EA * shortening / 2).epsilon(0.03));
   }
   CHECK(pressed >= 1);
+}
+
+namespace {
+
+SceneDef tee(int increments) {
+  std::string text = R"({
+    "units": "mm-N-MPa",
+    "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+    "fibres": [
+      {"name": "A", "material": "m", "radius": 0.1, "elements": 10,
+       "geometry": {"type": "line", "points": [[-2, 0, 0], [2, 0, 0]], "director": [0, 0, 1]}},
+      {"name": "B", "material": "m", "radius": 0.1, "elements": 10,
+       "geometry": {"type": "line", "points": [[0, 0, 0.3], [0, 0, 2.3]], "director": [1, 0, 0]}}],
+    "boundary_conditions": [{"type": "clamp", "group": "A.start"}, {"type": "clamp", "group": "A.end"},
+                            {"type": "clamp", "group": "B.end", "displacement": [0, 0, -0.3]}],
+    "contact": {},
+    "steps": [{"end_time": 1, "increments": )";
+  text += std::to_string(increments) + "}]}";
+  return loadSceneFromString(text, "tee.json");
+}
+
+}  // namespace
+
+TEST_CASE("a fibre's end face pushed onto the side of another rests on it and loads it") {
+  // B (vertical) comes down 0.3 mm onto A (horizontal, clamped at both ends): its end face
+  // touches A's top once B has come 0.2 mm down (t = 2/3), then A bends under it. B's end centre stays
+  // on A's top (0.1 above A's axis) within -1.5 p_max ... +p_max, and A's supports carry B.
+  World w(tee(15));
+  const double pMax = 5e-4;  // 0.005 R
+  const FibreStore& fs = w.fibres();
+  const Index tip = fs.firstNode[1], mid = fs.firstNode[0] + fs.nodeCount[0] / 2;
+  int resting = 0;
+  while (!w.finished()) {
+    REQUIRE(w.step().status == StepStatus::Converged);
+    const double rel = x0Of(fs.q, tip).z() - x0Of(fs.q, mid).z();
+    const double carried = w.reaction(0).force.z() + w.reaction(1).force.z();
+    CAPTURE(w.time());
+    CHECK(rel >= 0.1 - 1.5 * pMax);  // never through A
+    if (w.time() < 0.75) continue;   // pressed from t = 2/3
+    ++resting;
+    CHECK(rel <= 0.1 + pMax);
+    CHECK(std::abs(carried) > 1e-6);
+  }
+  CHECK(resting >= 3);
+}
+
+TEST_CASE("no contact past a fibre's end: an end that slid off a fibre leaves no force behind") {
+  // B, a cantilever crossing A near its free end, is pressed 0.05 mm onto A, then pulled back
+  // 0.6 mm along its axis: its end rides over A's flank and leaves it. Past A (tip y < -0.11),
+  // A carries nothing and B's tip is back at its free height 0.2 - 0.05 = 0.150.
+  const SceneDef scene = loadSceneFromString(R"({
+    "units": "mm-N-MPa",
+    "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+    "fibres": [
+      {"name": "A", "material": "m", "radius": 0.1, "elements": 10,
+       "geometry": {"type": "line", "points": [[-2, 0, 0], [2, 0, 0]], "director": [0, 0, 1]}},
+      {"name": "B", "material": "m", "radius": 0.1, "elements": 16,
+       "geometry": {"type": "line", "points": [[0, -3, 0.2], [0, 0.3, 0.2]], "director": [0, 0, 1]}}],
+    "tables": {"press": [[0, 0], [1, 1]], "slide": [[0, 0], [1, 0], [2, 1]]},
+    "boundary_conditions": [
+      {"type": "clamp", "group": "A.start"}, {"type": "clamp", "group": "A.end"},
+      {"type": "fix", "group": "B.start", "dofs": ["x", "z", "g1", "g2"],
+       "displacement": [0, 0, -0.05], "table": "press"},
+      {"type": "fix", "group": "B.start", "dofs": ["y"], "displacement": [0, -0.6, 0], "table": "slide"}],
+    "contact": {},
+    "steps": [{"end_time": 1, "increments": 5}, {"end_time": 2, "increments": 30}]})",
+                                             "end_slides_off.json");
+  World w(scene);
+  const FibreStore& fs = w.fibres();
+  const Index tip = fs.firstNode[1] + fs.nodeCount[1] - 1;
+  int past = 0;
+  double pressed = 0;
+  while (!w.finished()) {
+    REQUIRE(w.step().status == StepStatus::Converged);
+    const double onA = w.reaction(0).force.z() + w.reaction(1).force.z();
+    if (w.time() == 1) pressed = std::abs(onA);
+    if (x0Of(fs.q, tip).y() >= -0.11) continue;
+    ++past;
+    CAPTURE(w.time());
+    CHECK(std::abs(onA) <= 1e-9);
+    CHECK(x0Of(fs.q, tip).z() == doctest::Approx(0.15).epsilon(1e-6));
+  }
+  CHECK(pressed > 1e-4);  // A carried B before the slide
+  CHECK(past >= 3);
 }
