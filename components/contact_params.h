@@ -22,7 +22,7 @@
 // Laws and loops (paper section 4; docs/METHOD.md):
 //   p_max = 0.005 R_min, g_T,max = 0.005 R_min; a new zone's penalty k0 = min(E_I R_I, E_J R_J)
 //   (a tool zone's: E_f R_f); eq. 13 aims the deepest penetration of a zone at 0.9 p_max and
-//   changes k by at most a factor 10 per update, within 0.1 ... 1e4 x min(E_I R_I, E_J R_J)
+//   changes k by at most a factor 10 per update, within 1 ... 1e4 x min(E_I R_I, E_J R_J)
 //   (systems/penalty_adapter.h gives the reasons).
 #pragma once
 
@@ -60,7 +60,7 @@ struct ContactParams {
   double initialPenalty = 0;    // k of a new zone, N/mm (NaN: min(E_I R_I, E_J R_J))
   double penaltyChange = 10;    // bound on k_new / k_old (and its inverse) per update
   double penaltyTarget = 0.9;   // the deepest penetration of a zone is aimed at this x p_max
-  double penaltyMin = 0.1;      // bounds on k as multiples of the zone's section stiffness
+  double penaltyMin = 1;        // bounds on k as multiples of the zone's section stiffness
   double penaltyMax = 1e4;      // (ZoneStore::stiffness, min(E_I R_I, E_J R_J))
 
   // --- nested loops (paper section 4.4) ---

@@ -149,7 +149,7 @@ struct ContactDef {
   double regularisation = 0.5;        // p_reg / p_max (eq. 12)
   double initialPenalty = std::numeric_limits<double>::quiet_NaN();  // k of a new zone, N/mm
   double penaltyChange = 10;          // bound on k_new / k_old (and its inverse) per update
-  double penaltyMin = 0.1;            // k >= this x the zone's section stiffness (E R, N/mm)
+  double penaltyMin = 1;              // k >= this x the zone's section stiffness (E R, N/mm)
   double penaltyMax = 1e4;            // k <= this x the zone's section stiffness
   double friction = 0;                // mu between fibres
   double maxReversibleSlip = std::numeric_limits<double>::quiet_NaN();  // g_T,max, mm

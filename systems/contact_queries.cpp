@@ -13,7 +13,7 @@ double stepLimit(const ContactParams& p, const ContactState& s, const Eigen::Vec
   double a = 1;
   const auto limit = [&](double gap, double pMax, double dg) {
     const double allowed = p.stepPenetration * pMax;
-    if (dg < 0 && gap > -allowed) a = std::min(a, (gap + allowed) / -dg);
+    if (dg < 0) a = std::min(a, std::max(gap + allowed, allowed) / -dg);
   };
   const ContactElementStore& el = s.elements;
   for (Index e = 0; e < el.size(); ++e)

@@ -3,9 +3,12 @@
 // by the driver (they change no store, so they are not task-graph stages).
 //
 // stepLimit           the largest step length a in (0, 1] along dq (all DOFs) such that no
-//                     element closes deeper than stepPenetration p_max in one Newton step:
-//                     dg = N . (dx^I - dx^J), a = min over closing elements (dg < 0, g >
-//                     -allowed) of (g + allowed) / -dg, g the gap at the last evaluation.
+//                     element closes deeper than allowed = stepPenetration p_max in one Newton
+//                     step, and none already in contact closes by more than that:
+//                     dg = N . (dx^I - dx^J), a = min over closing elements (dg < 0) of
+//                     max(g + allowed, allowed) / -dg, g the gap at the last evaluation. (An
+//                     absolute bound g + a dg >= -allowed froze Newton when the penalty was too
+//                     soft for the load: the element sat at -allowed and every step had a = 0.)
 // deepestDetected     the largest penetration of the elements at their detection (or last
 //                     normal update), as a multiple of their zone's p_max.
 // fillContactReport   counts (zones, elements, active, sliding) and the largest penetration.

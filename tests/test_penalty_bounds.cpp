@@ -11,17 +11,17 @@
 using namespace fibra;
 
 TEST_CASE("the penalty adapter keeps every zone's penalty within its bounds") {
-  ContactParams p;  // target 0.9, beta 10, bounds 0.1 ... 1e4 x E R
+  ContactParams p;  // target 0.9, beta 10, bounds 1 ... 1e4 x E R
   const double ER = 400, pMax = 1e-3;
   // Zone 0: almost no load (1e-9 mm); zone 1: deep (1e3 p_max); zone 2: on target; zone 3: open.
   const std::vector<Index> zoneOf = {0, 1, 1, 2, 3};
   const std::vector<double> gap = {-1e-9, -1.0, -0.5, -0.9 * pMax, 1e-3};
   const std::vector<double> pMaxZ(4, pMax), stiffness(4, ER);
-  std::vector<double> k = {ER, 0.9e4 * ER, ER, ER};
+  std::vector<double> k = {1000 * ER, 0.9e4 * ER, ER, ER};
   ContactLoopStats stats;
   for (int pass = 0; pass < 6; ++pass)
     adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, k}, p, stats);
-  CHECK(k[0] == doctest::Approx(0.1 * ER));  // 1/10 per pass, stopped at the floor
+  CHECK(k[0] == doctest::Approx(ER));        // 1/10 per pass, stopped at the floor
   CHECK(k[1] == doctest::Approx(1e4 * ER));  // x10 per pass, stopped at the ceiling
   CHECK(stats.zonesAtCeiling == 1);          // and still 1000 p_max deep: counted
   CHECK(k[2] == doctest::Approx(ER));        // on target: unchanged
