@@ -50,15 +50,14 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
 
 // The contact set the accepted state was solved with, against a detection from that state (the
 // stores are put back afterwards; the detection cache holds nothing results depend on): the true
-// overlap of the fibres and how far the set is from the one a new pass would use. False when
-// cancelled.
-bool checkContactSet(WorldState& w, double t, ContactReport& report) {
+// overlap of the fibres and how far the set is from the one a new pass would use. A cancel
+// during it leaves the figures partial; the converged increment stands.
+void checkContactSet(WorldState& w, double t, ContactReport& report) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
   report.maxOverlap = trueOverlap(w.fibres, w.fibres.q, w.trial.elements);
   compareContactSets(w.fibres, used, w.trial, report);
   w.trial = std::move(used);
-  return !w.cancel();
 }
 
 }  // namespace
@@ -114,7 +113,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
       ++report.restarts;
     }
   }
-  if (s.fibres && !checkContactSet(w, tTry, report)) return cancelled(nr);
+  if (s.fibres) checkContactSet(w, tTry, report);
   return nr;
 }
 

@@ -398,6 +398,30 @@ void validateTable(const Table& table, const std::string& path) {
   }
 }
 
+// Contact lengths against the fibres' radii: a proximity distance (centre to centre) below two
+// radii never finds touching fibres; a tiny test-point spacing or a huge skin or proximity
+// costs memory or time without bound (or overflows the broadphase's single-precision boxes).
+void validateContactScale(const SceneDef& s) {
+  const ContactDef& c = s.contact;
+  if (!c.enabled || s.fibres.empty()) return;
+  double rMin = s.fibres[0].radius, rMax = rMin;
+  for (const FibreDef& f : s.fibres) rMin = std::min(rMin, f.radius), rMax = std::max(rMax, f.radius);
+  constexpr double kLongest = 1e6;  // mm: beyond any scene
+  if (std::isfinite(c.proximityDistance) && !(c.proximityDistance > 2 * rMax))
+    fail("contact.proximity_distance",
+         "must exceed the sum of two touching fibres' radii (2 x " + num(rMax) + " mm), got " +
+             num(c.proximityDistance) + ": closer fibres would not be sought for contact");
+  if (std::isfinite(c.proximityDistance) && c.proximityDistance > kLongest)
+    fail("contact.proximity_distance", "must be at most " + num(kLongest) + " mm, got " +
+                                           num(c.proximityDistance));
+  if (std::isfinite(c.skin) && c.skin > kLongest)
+    fail("contact.skin", "must be at most " + num(kLongest) + " mm, got " + num(c.skin));
+  if (std::isfinite(c.testPointSpacing) && c.testPointSpacing < 1e-3 * rMin)
+    fail("contact.test_point_spacing", "must be at least 1e-3 x the smallest radius (" +
+                                           num(1e-3 * rMin) + " mm), got " +
+                                           num(c.testPointSpacing));
+}
+
 void validateScene(const SceneDef& s) {
   if (s.units != "mm-N-MPa") fail("units", "must be \"mm-N-MPa\", got \"" + s.units + "\"");
   const Names materials = validateMaterials(s);
@@ -407,6 +431,7 @@ void validateScene(const SceneDef& s) {
   validateLoads(s, groups);
   validateSteps(s);
   validateContact(s.contact);
+  validateContactScale(s);
   validateTools(s);
   validateStabilisation(s.stabilisation, fibres);
   validateOutput(s, fibres);

@@ -80,14 +80,14 @@ void compareContactSets(const FibreStore& fs, const ContactState& used, const Co
   for (Index z = 0; z < zu.size(); ++z) usedZone.emplace(zu.id[z], z);
   r.redetectZoneChanges = 0;
   r.redetectGapChange = r.redetectParticleShift = 0;
-  Index paired = 0;
+  Index found = 0;  // used zones the fresh set has (by id)
   for (Index z = 0; z < zf.size(); ++z) {
     const auto it = usedZone.find(zf.id[z]);
+    found += it != usedZone.end();
     if (it == usedZone.end() || zu.elementCount[it->second] != zf.elementCount[z]) {
       ++r.redetectZoneChanges;
       continue;
     }
-    ++paired;
     const Index o = it->second;
     for (Index k = 0; k < zf.elementCount[z]; ++k) {
       const Index a = zu.firstElement[o] + k, b = zf.firstElement[z] + k;
@@ -101,7 +101,7 @@ void compareContactSets(const FibreStore& fs, const ContactState& used, const Co
       r.redetectParticleShift = std::max({r.redetectParticleShift, sI, sJ});
     }
   }
-  r.redetectZoneChanges += int(zu.size() - paired);  // used zones the fresh set lost
+  r.redetectZoneChanges += int(zu.size() - found);  // used zones the fresh set lost
 }
 
 }  // namespace fibra

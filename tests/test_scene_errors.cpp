@@ -165,6 +165,17 @@ TEST_CASE("scene errors: out-of-range numbers") {
   CHECK(errorAfter([](Json& j) {
           j["contact"] = {{"penalty_change", 0.5}};
         }) == "s.json: contact.penalty_change: must be >= 1, got 0.5");
+  // Lengths against the radii (R = 0.1): contact would be lost, or detection would not end.
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"proximity_distance", 0.19}}; }) ==
+        "s.json: contact.proximity_distance: must exceed the sum of two touching fibres' radii "
+        "(2 x 0.1 mm), got 0.19: closer fibres would not be sought for contact");
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"skin", 1e39}}; }) ==
+        "s.json: contact.skin: must be at most 1e+06 mm, got 1e+39");
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"test_point_spacing", 1e-9}}; }) ==
+        "s.json: contact.test_point_spacing: must be at least 1e-3 x the smallest radius (0.0001 "
+        "mm), got 1e-09");
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"penalty_min", 0}}; }) ==
+        "s.json: contact.penalty_min: must be > 0, got 0");
   CHECK(errorAfter([](Json& j) {
           j["fibres"][0]["geometry"]["points"][1] = {0, 0, 0};
         }) == "s.json: fibres[0].geometry.points[1]: repeats the previous point");

@@ -53,7 +53,7 @@ const char* const kFullScene = R"({
      "increment_tolerance": 1e-11, "max_cutbacks": 3, "line_search": true, "output_every": 2},
     {"end_time": 2.5}
   ],
-  "contact": {"proximity_distance": 0.05, "test_point_spacing": 0.01, "theta_cross_deg": 30,
+  "contact": {"proximity_distance": 0.06, "test_point_spacing": 0.01, "theta_cross_deg": 30,
               "theta_parallel_deg": 10, "self_contact": true, "self_contact_separation": 0.5,
               "skin": 0.02, "max_penetration": 2e-4, "regularisation": 0.25, "initial_penalty": 100,
               "penalty_change": 4, "friction": 0.1, "max_reversible_slip": 5e-4,
@@ -201,7 +201,7 @@ TEST_CASE("scene loader: every key of the format reaches its Def field") {
 
   const ContactDef& k = s.contact;
   CHECK(k.enabled);  // a contact section turns contact on
-  CHECK(k.proximityDistance == 0.05);
+  CHECK(k.proximityDistance == 0.06);
   CHECK(k.testPointSpacing == 0.01);
   CHECK(k.thetaCross == doctest::Approx(kPi / 6).epsilon(1e-15));  // degrees in the file
   CHECK(k.thetaParallel == doctest::Approx(kPi / 18).epsilon(1e-15));
