@@ -6,9 +6,11 @@
 //   build/bench_linear_solves --case yarn61|yarn250|fabric480|bundle7|bundle19|bundle37
 //       [--friction on|off]
 //       [--strategy cholmod,direct,umfpack,krylov] [--threads 1,2] [--repeats 3]
-//       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--csv FILE]
+//       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
+//       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
 //
-// Matrices: the tangent and residual assembled at the start (contact detected, t = 0). Per
+// Matrices: the tangent Newton assembled after --warm iterations of the first increment (see
+// warmWorld), b random (seeded). Per
 // strategy, a fresh solver each repeat (medians): analyse, numeric factorisation, one solve of
 // K x = -r (with Krylov: its iterations), the residual |K x - b| / |b| checked here with the
 // full K, and the peak resident memory of that repeat (VmHWM after a reset of the peak).
@@ -37,6 +39,11 @@ struct Options {
   std::vector<int> threads{1, 2};
   int repeats = 3;
   int newton = 0;
+  int warm = 3;                       // Newton iterations before the matrices are taken
+  std::string warmStrategy = "umfpack";
+  int refactorAbove = KrylovSettings{}.refactorAbove;
+  int maxIterations = 30;  // Newton iterations per attempt
+  int cutbacks = 8;        // per increment
   std::vector<std::string> newtonStrategies{"krylov", "umfpack"};
   std::string csv = "linear_solves.csv";
 };
@@ -126,14 +133,31 @@ Row strategyRun(const std::string& name, const LinearSystem& ls, const Eigen::Ve
   return r;
 }
 
-// A world at the scene's start with contact detected and the tangent assembled.
-std::unique_ptr<WorldState> startWorld(const Options& o, int threads) {
+// A world whose linear system holds a tangent met on the way: after `warm` Newton iterations of
+// the scene's first increment (solved by `warmStrategy`; the attempt then stops, and the tangent
+// Newton assembled last stays in ls: contact detected, friction sliding), or, with warm = 0, the
+// tangent at the start (contact detected, no slip yet: symmetric even with friction).
+std::unique_ptr<WorldState> warmWorld(const Options& o, int threads, double& assemble) {
   auto w = std::make_unique<WorldState>();
-  w->scene = sceneOf(o, 1);
+  w->scene = sceneOf(o, 5);
   w->def.threads = threads;
+  LinearStrategy s;
+  if (!parseStrategy(o.warmStrategy, s)) std::exit(2);
+  w->def.linearStrategy = s;
+  for (StepDef& st : w->scene.steps) st.maxIterations = std::max(o.warm, 1), st.maxCutbacks = 0;
   buildWorld(*w);
-  runStage(*w, w->pipeline.detect, 0);
-  runStage(*w, w->pipeline.assemble, 0, true);
+  const double t = bench::seconds([&] {
+    if (o.warm == 0) {
+      runStage(*w, w->pipeline.detect, 0);
+      assemble = bench::median(3, [&] { runStage(*w, w->pipeline.assemble, 0, true); });
+      return;
+    }
+    const StepReport r = advance(*w);
+    assemble = r.timings.assemble / std::max(r.totalIterations, 1);
+    std::printf("warm-up (%s, %d threads): %d Newton iterations, %d contact elements, ",
+                o.warmStrategy.c_str(), threads, r.totalIterations, int(r.contact.elements));
+  });
+  std::printf("%.1f s; assembly %.3f s per iteration\n", t, assemble);
   return w;
 }
 
@@ -141,13 +165,13 @@ void matrices(const Options& o, std::FILE* csv) {
   std::printf("%-8s %3s %-8s %8s %10s %9s %9s %8s %6s %9s %8s %5s\n", "case", "thr", "strategy",
               "dofs", "nonzeros", "assemble", "analyse", "factor", "solve", "krylov_it",
               "residual", "mem GiB");
+  double assemble = 0;  // s per iteration, on the most threads asked
+  auto w = warmWorld(o, *std::max_element(o.threads.begin(), o.threads.end()), assemble);
+  const LinearSystem ls = w->system;  // the tangent met on the way (warmWorld)
+  // b: a residual-like right-hand side that does not vanish at convergence (seeded)
+  Eigen::VectorXd b = Eigen::VectorXd::Random(ls.freeCount);
   for (int threads : o.threads) {
     bench::setBlasThreads(threads);
-    auto w = startWorld(o, threads);
-    const LinearSystem& ls = w->system;
-    const double assemble = bench::median(o.repeats, [&] { runStage(*w, w->pipeline.assemble, 0, true); });
-    Eigen::VectorXd b(ls.freeCount);
-    for (Index i = 0; i < ls.freeCount; ++i) b(i) = -ls.r(ls.dofOf[i]);
     for (const std::string& s : o.strategies) {
       std::vector<Row> rows;
       for (int k = 0; k < o.repeats; ++k) {
@@ -183,10 +207,20 @@ void newton(const Options& o) {
       bench::setBlasThreads(threads);
       WorldState w;
       w.scene = sceneOf(o, 5);
+      w.scene.solver.krylov.refactorAbove = o.refactorAbove;
+      for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
       w.def.threads = threads;
       LinearStrategy s;
       if (!parseStrategy(name, s)) std::exit(2);
       w.def.linearStrategy = s;
+      auto last = std::chrono::steady_clock::now();
+      w.def.progress = [&](const Progress& p) {  // one line per Newton iteration
+        const LinearSolveStats& st = w.solver.stats();
+        std::printf("    t %.3f it %2d residual %.2e  %.2f s  (factorisations %d, krylov it %d, shift %.0e)\n", p.time,
+                    p.iteration, p.residual, bench::seconds([] {}) + std::chrono::duration<double>(
+                    std::chrono::steady_clock::now() - last).count(), st.factorisations, st.krylovIterations, st.shift);
+        last = std::chrono::steady_clock::now();
+      };
       buildWorld(w);
       int iterations = 0;
       double wall = 0, assemble = 0, factorise = 0, solve = 0;
@@ -224,6 +258,11 @@ int main(int argc, char** argv) {
     else if (k == "--newton") o.newton = std::stoi(v);
     else if (k == "--newton-strategy") o.newtonStrategies = split(v);
     else if (k == "--csv") o.csv = v;
+    else if (k == "--warm") o.warm = std::stoi(v);
+    else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
+    else if (k == "--warm-strategy") o.warmStrategy = v;
+    else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
+    else if (k == "--max-iterations") o.maxIterations = std::stoi(v);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::printf("case %s, friction %s\n", o.name.c_str(), o.friction ? "on (mu 0.1)" : "off");

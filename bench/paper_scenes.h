@@ -1,10 +1,11 @@
 // Paper-size contact scenes for the linear-solve bench, as SceneDefs (bench/contact_assemblies.h
 // gives the layouts):
 // - yarnScene(fibres, mu): the twisted yarn of the paper's Table 2 (fibre diameter 0.02 mm,
-//   15 quadratic elements, E = 73 000 MPa, nu = 0.3), packed at a clearance of 0.995 so that
-//   neighbouring fibres overlap by 1e-4 mm and contact exists from the start; squeezed in x
-//   between two plane tools touching its outermost fibres, the one at +x moving by
-//   `squeeze` mm over the step's increments. Fibre ends held axially (z) and in y.
+//   15 quadratic elements, E = 73 000 MPa, nu = 0.3), packed at `clearance` (neighbour
+//   distance / 2R; 1: touching, so that contact is detected from the start; at 0.995 they
+//   overlap by 1e-4 mm, and Newton does not converge in the first increment even with exact
+//   solves); squeezed in x between two plane tools touching its outermost fibres, the one at
+//   +x moving by `squeeze` mm over the step's increments. Fibre ends held axially (z) and in y.
 // - fabricScene(mu): the 480-fibre plain weave (10 yarns x 48 fibres, diameter 0.052 mm,
 //   40 quadratic elements), packed at 0.995 inside the yarns; fibre ends held in x, y, z.
 // Both: fibre-fibre contact with friction mu (0: frictionless), stabilisation 1e-4 N/mm.
@@ -38,12 +39,13 @@ inline void contactSettings(SceneDef& s, double mu, int increments) {
   s.steps.push_back(st);
 }
 
-inline SceneDef yarnScene(int fibres, double mu, double squeeze = 0.002, int increments = 5) {
+inline SceneDef yarnScene(int fibres, double mu, double squeeze = 0.002, int increments = 5,
+                          double clearance = 1.0) {
   SceneDef s;
   s.materials.push_back({"m", 73000, 0.3, 1, 1});
   assemblies::YarnDef y;
   y.fibres = fibres;
-  y.clearance = 0.995;
+  y.clearance = clearance;
   double outer = 0;
   for (FibreDef f : assemblies::yarnFibres(y)) {
     f.material = "m";

@@ -202,7 +202,8 @@ SolverDef readSolver(const Json& j, const std::string& path) {
   SolverDef s;
   s.strategy = f.choice("strategy",
                         {{"auto", LinearStrategy::Auto}, {"direct", LinearStrategy::Direct},
-                         {"umfpack", LinearStrategy::Umfpack}, {"krylov", LinearStrategy::Krylov}},
+                         {"umfpack", LinearStrategy::Umfpack}, {"krylov", LinearStrategy::Krylov},
+                         {"krylov-lu", LinearStrategy::KrylovLu}},
                         s.strategy);
   s.krylov.tolerance = f.number("krylov_tolerance", s.krylov.tolerance);
   s.krylov.restart = f.integer("krylov_restart", s.krylov.restart);

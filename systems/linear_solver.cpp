@@ -37,7 +37,9 @@ SparseMatrix fullMatrix(const LinearSystem& ls) {
 
 // The factor of the shifted symmetric part, kept across Newton iterations (Krylov strategy).
 struct Preconditioner {
+  bool lu = false;                // KrylovLu: UMFPACK LU of the full K instead
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  Eigen::UmfPackLU<SparseMatrix> umf;
   SparseMatrix S;                 // upper triangle of the symmetric part, shifted
   Eigen::VectorXd diagonal;       // |S_ii| before the shift
   std::vector<Index> diagonalAt;  // index of S_ii in S.valuePtr()
@@ -63,13 +65,14 @@ const char* strategyName(LinearStrategy s) {
     case LinearStrategy::Direct: return "direct";
     case LinearStrategy::Umfpack: return "umfpack";
     case LinearStrategy::Krylov: return "krylov";
+    case LinearStrategy::KrylovLu: return "krylov-lu";
   }
   return "?";
 }
 
 bool parseStrategy(const std::string& name, LinearStrategy& s) {
   for (LinearStrategy c : {LinearStrategy::Auto, LinearStrategy::Direct, LinearStrategy::Umfpack,
-                           LinearStrategy::Krylov})
+                           LinearStrategy::Krylov, LinearStrategy::KrylovLu})
     if (name == strategyName(c)) {
       s = c;
       return true;
@@ -122,9 +125,10 @@ struct LinearSolver::Impl {
   bool direct(const LinearSystem& ls, std::string& message);
   bool umfpackLu(const LinearSystem& ls, std::string& message);
   bool factorisePreconditioner(const LinearSystem& ls, std::string& message);
-  bool krylovFactorise(const LinearSystem& ls, std::string& message);
+  int reuseLimit() const;
+  bool krylovFactorise(const LinearSystem& ls, std::string& message, bool lu);
   void krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  GmresResult gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  GmresResult gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit);
 };
 
 bool LinearSolver::Impl::direct(const LinearSystem& ls, std::string& message) {
@@ -165,6 +169,17 @@ bool LinearSolver::Impl::umfpackLu(const LinearSystem& ls, std::string& message)
 // Factorises S + sigma diag(|S_ii|) for sigma = 0 (or a tenth of the last shift), growing by
 // 100x up to 1 while CHOLMOD reports it not positive definite.
 bool LinearSolver::Impl::factorisePreconditioner(const LinearSystem& ls, std::string& message) {
+  if (pre.lu) {
+    if (ls.symmetric) full = fullMatrix(ls);
+    if (!run(pre.umf, pre.revision, ls.symmetric ? full : ls.K, ls.revision)) {
+      pre.valid = false;
+      message = "Krylov: UMFPACK preconditioner singular";
+      return false;
+    }
+    pre.valid = pre.fresh = true;
+    pre.stale = false;
+    return true;
+  }
   symmetricPart(ls, pre.S);
   if (pre.revision != ls.revision) {
     pre.diagonalAt = diagonalPositions(pre.S);
@@ -202,8 +217,9 @@ bool LinearSolver::Impl::factorisePreconditioner(const LinearSystem& ls, std::st
   return true;
 }
 
-bool LinearSolver::Impl::krylovFactorise(const LinearSystem& ls, std::string& message) {
+bool LinearSolver::Impl::krylovFactorise(const LinearSystem& ls, std::string& message, bool lu) {
   system = &ls;
+  if (pre.lu != lu) pre.valid = false, pre.revision = -1, pre.shift = 0, pre.lu = lu;
   if (pre.valid && pre.revision == ls.revision && !pre.stale) {
     pre.fresh = false;
     ++stats.reuses;
@@ -216,7 +232,8 @@ bool LinearSolver::Impl::krylovFactorise(const LinearSystem& ls, std::string& me
   return true;
 }
 
-GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+// GMRES with the factor at hand, at most `limit` iterations.
+GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit) {
   const LinearSystem& ls = *system;
   const LinearOperator A = [&ls](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
     if (ls.symmetric)
@@ -224,11 +241,16 @@ GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::Vecto
     else
       y.noalias() = ls.K * v;
   };
-  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) { y = pre.llt.solve(v); };
+  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    if (pre.lu)
+      y = pre.umf.solve(v);
+    else
+      y = pre.llt.solve(v);
+  };
   GmresSettings g;
   g.tolerance = krylov.tolerance;
   g.restart = krylov.restart;
-  g.maxIterations = krylov.maxIterations;
+  g.maxIterations = limit;
   x.setZero(b.size());
   Span span(trace, "krylov", "solver");
   const GmresResult r = gmres(A, M, b, x, g, workspace);
@@ -238,12 +260,19 @@ GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::Vecto
   return r;
 }
 
+// Iterations allowed with a re-used factor: refactorAbove. A count, not a time budget: a
+// decision on measured times would make the results depend on the machine's load.
+int LinearSolver::Impl::reuseLimit() const { return std::min(krylov.refactorAbove, krylov.maxIterations); }
+
+// With a re-used factor GMRES stops at reuseLimit(): a factor that stale costs more in
+// iterations than a new one; the solve is then redone with a fresh factor, up to
+// maxIterations.
 void LinearSolver::Impl::krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  GmresResult r = gmresOnce(b, x);
+  GmresResult r = gmresOnce(b, x, pre.fresh ? krylov.maxIterations : reuseLimit());
   if (!r.converged && !pre.fresh) {
     std::string message;
     ++stats.refactorisations;
-    if (factorisePreconditioner(*system, message)) r = gmresOnce(b, x);
+    if (factorisePreconditioner(*system, message)) r = gmresOnce(b, x, krylov.maxIterations);
   }
   if (!r.converged) ++stats.krylovFailures;
   if (!r.converged || r.iterations > krylov.refactorAbove) pre.stale = true;
@@ -265,7 +294,7 @@ LinearStrategy LinearSolver::strategy() const { return impl_->strategy; }
 
 LinearStrategy LinearSolver::resolved(Index n) const {
   if (impl_->strategy != LinearStrategy::Auto) return impl_->strategy;
-  return n < kKrylovFromEquations ? LinearStrategy::Direct : LinearStrategy::Krylov;
+  return n < kUmfpackFromEquations ? LinearStrategy::Direct : LinearStrategy::Umfpack;
 }
 
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
@@ -274,7 +303,8 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   m.active = Active::None;
   switch (resolved(ls.freeCount)) {
     case LinearStrategy::Umfpack: return m.umfpackLu(ls, message);
-    case LinearStrategy::Krylov: return m.krylovFactorise(ls, message);
+    case LinearStrategy::Krylov: return m.krylovFactorise(ls, message, false);
+    case LinearStrategy::KrylovLu: return m.krylovFactorise(ls, message, true);
     default: return m.direct(ls, message);
   }
 }

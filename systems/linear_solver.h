@@ -12,10 +12,13 @@
 //   right preconditioner of GMRES (systems/krylov.h) on the true K, to a relative residual
 //   |K x - b| <= tolerance |b|. The factor is re-used across calls to factorise (Newton
 //   iterations, contact passes) and refactorised only when the pattern revision changes, when
-//   the last solve needed more than `refactorAbove` Krylov iterations, or when GMRES did not
-//   converge with a re-used factor (then at once, with the K at hand, and the solve redone).
+//   the last solve needed more than `refactorAbove` Krylov iterations, or when GMRES with a
+//   re-used factor does not converge within `refactorAbove` iterations (then at once, with the
+//   K at hand, and the solve redone with up to `maxIterations`).
 //   sigma starts at 0 (a tenth of the last shift that worked) and grows by 100x up to 1.
-// - Auto: Direct below kKrylovFromEquations equations, Krylov from there (measured rule).
+// - KrylovLu: the same, preconditioned by UMFPACK's LU of the full K (re-used likewise).
+// - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
+//   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays).
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
 // count is a process-wide setting: with setBlasThreads(n), every factorisation and solve first
 // sets it to n (the world passes its own thread count); 0 leaves it alone.
@@ -47,8 +50,10 @@ struct LinearSolveStats {
 };
 
 
-// Auto's rule: Krylov from this many equations (measured, docs/RESULTS.md).
-inline constexpr Index kKrylovFromEquations = 12000;
+// Auto's rule: UMFPACK from this many equations (measured, docs/RESULTS.md: at 6.9k equations
+// SparseLU and UMFPACK factorise a frictional bundle tangent in the same time, at 16.8k UMFPACK
+// is 7x faster; frictionless tangents that are not positive definite favour UMFPACK earlier).
+inline constexpr Index kUmfpackFromEquations = 7000;
 
 // The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov").
 const char* strategyName(LinearStrategy s);
