@@ -301,8 +301,15 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   Impl& m = *impl_;
   if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
   m.active = Active::None;
+  const bool automatic = m.strategy == LinearStrategy::Auto;
   switch (resolved(ls.freeCount)) {
-    case LinearStrategy::Umfpack: return m.umfpackLu(ls, message);
+    case LinearStrategy::Umfpack:
+      // auto: UMFPACK reports some large tangents singular that CHOLMOD or SparseLU factorise
+      // (the 250-fibre yarn's, docs/RESULTS.md); those fall back to the direct path.
+      if (m.umfpackLu(ls, message) || !automatic) return m.active != Active::None;
+      ++m.stats.fallbacks;
+      message.clear();
+      return m.direct(ls, message);
     case LinearStrategy::Krylov: return m.krylovFactorise(ls, message, false);
     case LinearStrategy::KrylovLu: return m.krylovFactorise(ls, message, true);
     default: return m.direct(ls, message);

@@ -18,7 +18,8 @@
 //   sigma starts at 0 (a tenth of the last shift that worked) and grows by 100x up to 1.
 // - KrylovLu: the same, preconditioned by UMFPACK's LU of the full K (re-used likewise).
 // - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
-//   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays).
+//   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays);
+//   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
 // count is a process-wide setting: with setBlasThreads(n), every factorisation and solve first
 // sets it to n (the world passes its own thread count); 0 leaves it alone.
@@ -37,7 +38,8 @@ namespace fibra {
 
 struct LinearSolveStats {
   double analyse = 0, factorise = 0, solve = 0;  // seconds, accumulated (solve: with Krylov)
-  int analyses = 0, factorisations = 0, fallbacks = 0;
+  int analyses = 0, factorisations = 0;
+  int fallbacks = 0;           // LL^T -> LDL^T (Direct), or UMFPACK -> Direct (Auto)
   int solves = 0;              // right-hand sides solved
   // Krylov strategy
   int krylovIterations = 0;    // GMRES iterations, summed over solves

@@ -206,3 +206,22 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(error(R"({"krylov_restart": 0})") == "s.json: solver.krylov_restart: must be >= 1, got 0");
   CHECK(error(R"({"refactor_above": 0})") == "s.json: solver.refactor_above: must be >= 1, got 0");
 }
+
+TEST_CASE("the linear solver's spans appear in the trace with their counts") {
+  Trace trace;
+  World w(scenes::bundle(1, 10, 0.01, 5e-4, 0.1),
+          {.threads = 1, .trace = &trace, .linearStrategy = LinearStrategy::Krylov});
+  REQUIRE(w.step().status == StepStatus::Converged);
+  int factorise = 0, solve = 0, krylov = 0;
+  std::int64_t iterations = 0;
+  for (const Trace::Event& e : trace.events()) {
+    const std::string name = e.name;
+    factorise += name == "factorise";
+    solve += name == "solve";
+    if (name == "krylov") ++krylov, iterations += e.items;
+  }
+  CHECK(factorise >= 1);
+  CHECK(solve >= 1);
+  CHECK(krylov >= solve);  // one GMRES run per solve, two when a re-used factor failed
+  CHECK(iterations >= krylov);
+}
