@@ -76,8 +76,8 @@ struct WovenDef {
 // z = A (-1)^j cos(pi (x / p - 1/2)), weft yarn i at x = (i + 1/2) p as the opposite, so that
 // at every crossing one yarn lies on the other; A = half the yarn thickness. Each fibre is its
 // yarn's centreline translated by its (lateral, vertical) place in the hex-packed section.
-inline FibreStore wovenFabric(const WovenDef& w = {}) {
-  FibreStore fs;
+inline std::vector<FibreDef> wovenFibres(const WovenDef& w = {}) {
+  std::vector<FibreDef> out;
   const double R = w.radius, dl = 2 * R * w.clearance, dv = std::sqrt(3.0) * R * w.clearance;
   const double A = 0.5 * ((w.rows - 1) * dv + 2 * R);
   const double span = w.pitch * std::max(w.warp, w.weft);
@@ -93,11 +93,18 @@ inline FibreStore wovenFabric(const WovenDef& w = {}) {
           const double z = (alongX ? 1 : -1) * sign * A * std::cos(std::numbers::pi * (t / w.pitch - 0.5)) + v;
           pts.push_back(alongX ? Vec3(t, c + lat, z) : Vec3(c + lat, t, z));
         }
-        add(fs, polylineFibre((alongX ? "warp" : "weft") + std::to_string(index), R, w.elements, 2, pts));
+        out.push_back(polylineFibre((alongX ? "warp" : "weft") + std::to_string(index), R,
+                                    w.elements, 2, pts));
       }
   };
   for (int j = 0; j < w.warp; ++j) yarn(true, j);
   for (int i = 0; i < w.weft; ++i) yarn(false, i);
+  return out;
+}
+
+inline FibreStore wovenFabric(const WovenDef& w = {}) {
+  FibreStore fs;
+  for (const FibreDef& d : wovenFibres(w)) add(fs, d);
   return fs;
 }
 
@@ -113,8 +120,8 @@ struct YarnDef {
 // Twisted yarn (paper section 5.3): fibres on concentric rings (radius k 2R c, as many as fit
 // at spacing 2R c), each a helix about the yarn axis z with the common pitch: a compact
 // parallel packing, twisted.
-inline FibreStore twistedYarn(const YarnDef& y = {}) {
-  FibreStore fs;
+inline std::vector<FibreDef> yarnFibres(const YarnDef& y = {}) {
+  std::vector<FibreDef> out;
   const double d = 2 * y.radius * y.clearance;
   int made = 0;
   for (int ring = 0; made < y.fibres; ++ring) {
@@ -131,9 +138,15 @@ inline FibreStore twistedYarn(const YarnDef& y = {}) {
       f.geometry.pitch = y.pitch;
       f.geometry.turns = y.length / y.pitch;
       f.geometry.phase = 2 * std::numbers::pi * k / n + 0.37 * ring;
-      add(fs, f);
+      out.push_back(f);
     }
   }
+  return out;
+}
+
+inline FibreStore twistedYarn(const YarnDef& y = {}) {
+  FibreStore fs;
+  for (const FibreDef& d : yarnFibres(y)) add(fs, d);
   return fs;
 }
 

@@ -6,6 +6,7 @@
 
 #include "components/beam_store.h"
 #include "components/boundary.h"
+#include "components/solver_settings.h"
 #include "components/tools.h"
 #include "core/errors.h"
 #include "core/table.h"
@@ -186,6 +187,13 @@ struct StabilisationDef {
   std::vector<std::string> fibres;
 };
 
+// The linear solver of the Newton systems (systems/linear_solver.h): its strategy and the
+// Krylov settings. WorldDef::linearStrategy, when set, overrides `strategy`.
+struct SolverDef {
+  LinearStrategy strategy = LinearStrategy::Auto;  // auto: by size (docs/RESULTS.md)
+  KrylovSettings krylov;
+};
+
 // The prescribed motion of a boundary condition's held DOFs or of a tool (their motion fields).
 template <class Def>
 PrescribedMotion motionOf(const Def& d) {
@@ -203,6 +211,7 @@ struct SceneDef {
   ContactDef contact;
   std::vector<ToolDef> tools;
   StabilisationDef stabilisation;
+  SolverDef solver;
   OutputDef output;
 };
 

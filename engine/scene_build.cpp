@@ -163,6 +163,9 @@ void buildWorld(WorldState& w) {
   if (w.scene.units != "mm-N-MPa")
     throw SceneError("units: only \"mm-N-MPa\" is supported, got \"" + w.scene.units + "\"");
   w.solver.setLuSolver(w.def.luSolver);
+  w.solver.setStrategy(w.def.linearStrategy.value_or(w.scene.solver.strategy));
+  w.solver.setKrylov(w.scene.solver.krylov);
+  w.solver.setTrace(w.def.trace);
   if (w.def.arena) {
     w.arena = w.def.arena;
   } else {

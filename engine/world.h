@@ -14,7 +14,8 @@
 // cores the arena is given (two worlds running at once with different thread counts share that
 // setting: each factorisation runs with the count set last). Results are bitwise the same for
 // every thread count where no threaded BLAS is involved (Eigen's SparseLU, the default for
-// friction); CHOLMOD's and UMFPACK's BLAS may sum in another order with another thread count.
+// friction); CHOLMOD's and UMFPACK's BLAS (and so the Krylov strategy, preconditioned by
+// CHOLMOD) may sum in another order with another thread count, and are deterministic for one.
 // The callbacks are invoked on the thread that called step(), never concurrently with each
 // other; they must not call back into the world. The cancel callback is polled between Newton
 // iterations and, during detection, once per chunk of work.
@@ -35,6 +36,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -50,6 +52,9 @@ struct WorldDef {
   Trace* trace = nullptr;               // records the systems' spans when set (engine/trace.h)
   LuSolver luSolver = LuSolver::EigenSparseLu;  // non-symmetric tangents (friction); see
                                                 // docs/RESULTS.md for the measurement
+  // The linear strategy; unset: the scene's solver.strategy (default auto, by size). The
+  // measured choice per size is in docs/RESULTS.md ("Linear solves at paper scale").
+  std::optional<LinearStrategy> linearStrategy;
 };
 
 struct WorldState;

@@ -168,7 +168,7 @@ SceneDef readScene(const Json& root) {
   const Fields f(
       root, "",
       {"description", "units", "materials", "fibres", "groups", "tables", "boundary_conditions",
-       "loads", "steps", "contact", "tools", "stabilisation", "output"});
+       "loads", "steps", "contact", "tools", "stabilisation", "solver", "output"});
   f.string("description", "");
   SceneDef s;
   s.units = f.string("units");
@@ -188,6 +188,7 @@ SceneDef readScene(const Json& root) {
       f, "tools", [&](const Json& j, const std::string& at) { return readTool(j, at, tables); });
   if (f.has("stabilisation"))
     s.stabilisation = readStabilisation(f.at("stabilisation"), "stabilisation");
+  if (f.has("solver")) s.solver = readSolver(f.at("solver"), "solver");
   if (f.has("output")) s.output = readOutput(f.at("output"), "output");
   return s;
 }

@@ -198,4 +198,20 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
   return s;
 }
 
+SolverDef readSolver(const Json& j, const std::string& path) {
+  const Fields f(j, path, {"strategy", "krylov_tolerance", "krylov_restart",
+                           "krylov_max_iterations", "refactor_above"});
+  SolverDef s;
+  s.strategy = f.choice("strategy",
+                        {{"auto", LinearStrategy::Auto}, {"direct", LinearStrategy::Direct},
+                         {"umfpack", LinearStrategy::Umfpack}, {"krylov", LinearStrategy::Krylov},
+                         {"krylov-lu", LinearStrategy::KrylovLu}},
+                        s.strategy);
+  s.krylov.tolerance = f.number("krylov_tolerance", s.krylov.tolerance);
+  s.krylov.restart = f.integer("krylov_restart", s.krylov.restart);
+  s.krylov.maxIterations = f.integer("krylov_max_iterations", s.krylov.maxIterations);
+  s.krylov.refactorAbove = f.integer("refactor_above", s.krylov.refactorAbove);
+  return s;
+}
+
 }  // namespace fibra::scene_sections

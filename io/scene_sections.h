@@ -28,5 +28,6 @@ LoadDef readLoad(const Json& j, const std::string& path, const Tables& tables);
 ToolDef readTool(const Json& j, const std::string& path, const Tables& tables);
 ContactDef readContact(const Json& j, const std::string& path);
 StabilisationDef readStabilisation(const Json& j, const std::string& path);
+SolverDef readSolver(const Json& j, const std::string& path);
 
 }  // namespace fibra::scene_sections

@@ -369,6 +369,14 @@ void validateStabilisation(const StabilisationDef& st, const Names& fibres) {
     resolve(fibres, st.fibres[i], "fibre", at("stabilisation.fibres", i));
 }
 
+void validateSolver(const SolverDef& s) {
+  if (!(s.krylov.tolerance > 0 && s.krylov.tolerance < 1))
+    fail("solver.krylov_tolerance", "must be in (0, 1), got " + num(s.krylov.tolerance));
+  atLeast(s.krylov.restart, 1, "solver.krylov_restart");
+  atLeast(s.krylov.maxIterations, 1, "solver.krylov_max_iterations");
+  atLeast(s.krylov.refactorAbove, 1, "solver.refactor_above");
+}
+
 void validateOutput(const SceneDef& s, const Names& fibres) {
   finite(s.output.momentPoint, "output.moment_point");
   uniqueNames(s.output.probes, "output.probes");
@@ -434,6 +442,7 @@ void validateScene(const SceneDef& s) {
   validateContactScale(s);
   validateTools(s);
   validateStabilisation(s.stabilisation, fibres);
+  validateSolver(s.solver);
   validateOutput(s, fibres);
 }
 

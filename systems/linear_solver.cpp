@@ -1,5 +1,7 @@
 #include "systems/linear_solver.h"
 
+#include "systems/krylov.h"
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
@@ -15,24 +17,91 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-enum class Active { None, Llt, Ldlt, Lu };
+enum class Active { None, Llt, Ldlt, Lu, Umfpack, Krylov };
+
+// The upper triangle of S = (K + K^T) / 2 (K full, CSC); for a symmetric ls, K itself.
+void symmetricPart(const LinearSystem& ls, SparseMatrix& S) {
+  if (ls.symmetric) {
+    S = ls.K;
+    return;
+  }
+  const SparseMatrix Kt = ls.K.transpose();
+  S = (0.5 * (ls.K + Kt)).triangularView<Eigen::Upper>();
+}
+
+// The full matrix of a symmetric ls (K stores the upper triangle), else K.
+SparseMatrix fullMatrix(const LinearSystem& ls) {
+  if (!ls.symmetric) return ls.K;
+  return SparseMatrix(ls.K.selfadjointView<Eigen::Upper>());
+}
+
+// The factor of the shifted symmetric part, kept across Newton iterations (Krylov strategy).
+struct Preconditioner {
+  bool lu = false;                // KrylovLu: UMFPACK LU of the full K instead
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  Eigen::UmfPackLU<SparseMatrix> umf;
+  SparseMatrix S;                 // upper triangle of the symmetric part, shifted
+  Eigen::VectorXd diagonal;       // |S_ii| before the shift
+  std::vector<Index> diagonalAt;  // index of S_ii in S.valuePtr()
+  Index revision = -1;            // pattern revision analysed
+  bool valid = false;             // a factor exists
+  bool fresh = false;             // factorised from the K of the current call
+  bool stale = false;             // the last solve asks for a refactorisation
+  double shift = 0;               // sigma of the factor
+};
+
+// Positions of the diagonal entries of an upper-triangular CSC matrix (last of each column).
+std::vector<Index> diagonalPositions(const SparseMatrix& S) {
+  std::vector<Index> at(S.cols());
+  for (Index j = 0; j < S.cols(); ++j) at[j] = S.outerIndexPtr()[j + 1] - 1;
+  return at;
+}
 
 }  // namespace
+
+const char* strategyName(LinearStrategy s) {
+  switch (s) {
+    case LinearStrategy::Auto: return "auto";
+    case LinearStrategy::Direct: return "direct";
+    case LinearStrategy::Umfpack: return "umfpack";
+    case LinearStrategy::Krylov: return "krylov";
+    case LinearStrategy::KrylovLu: return "krylov-lu";
+  }
+  return "?";
+}
+
+bool parseStrategy(const std::string& name, LinearStrategy& s) {
+  for (LinearStrategy c : {LinearStrategy::Auto, LinearStrategy::Direct, LinearStrategy::Umfpack,
+                           LinearStrategy::Krylov, LinearStrategy::KrylovLu})
+    if (name == strategyName(c)) {
+      s = c;
+      return true;
+    }
+  return false;
+}
 
 struct LinearSolver::Impl {
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
   Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt;
-  Eigen::UmfPackLU<SparseMatrix> umfpack;
+  Eigen::UmfPackLU<SparseMatrix> umfpack, umfpackFull;  // Direct's LU; the Umfpack strategy's
   Eigen::SparseLU<SparseMatrix> sparseLu;
+  Preconditioner pre;
+  GmresWorkspace workspace;
+  KrylovSettings krylov;
   LuSolver luKind = LuSolver::EigenSparseLu;
+  LinearStrategy strategy = LinearStrategy::Auto;
   int blasThreads = 0;
-  Index lltRevision = -1, ldltRevision = -1, luRevision = -1;
+  Trace* trace = nullptr;
+  Index lltRevision = -1, ldltRevision = -1, luRevision = -1, umfRevision = -1;
   Active active = Active::None;
+  const LinearSystem* system = nullptr;  // Krylov: the system whose K the products use
+  SparseMatrix full;                     // Umfpack strategy on a symmetric K
   LinearSolveStats stats;
 
   Impl() {
     llt.cholmod().print = 0;
     ldlt.cholmod().print = 0;
+    pre.llt.cholmod().print = 0;
   }
 
   template <class Solver>
@@ -44,13 +113,170 @@ struct LinearSolver::Impl {
       ++stats.analyses;
       revision = current;
     }
+    Span span(trace, "factorise", "solver");
+    span.items(K.cols());
     const auto t0 = std::chrono::steady_clock::now();
     s.factorize(K);
     stats.factorise += seconds(t0);
     ++stats.factorisations;
     return s.info() == Eigen::Success;
   }
+
+  bool direct(const LinearSystem& ls, std::string& message);
+  bool umfpackLu(const LinearSystem& ls, std::string& message);
+  bool factorisePreconditioner(const LinearSystem& ls, std::string& message);
+  int reuseLimit() const;
+  bool krylovFactorise(const LinearSystem& ls, std::string& message, bool lu);
+  void krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  GmresResult gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit);
 };
+
+bool LinearSolver::Impl::direct(const LinearSystem& ls, std::string& message) {
+  if (!ls.symmetric) {
+    const bool umf = luKind == LuSolver::Umfpack;
+    if (umf ? !run(umfpack, luRevision, ls.K, ls.revision)
+            : !run(sparseLu, luRevision, ls.K, ls.revision)) {
+      message = umf ? "UMFPACK: singular tangent" : "SparseLU: singular tangent";
+      return false;
+    }
+    active = Active::Lu;
+    return true;
+  }
+  if (run(llt, lltRevision, ls.K, ls.revision)) {
+    active = Active::Llt;
+    return true;
+  }
+  ++stats.fallbacks;
+  if (!run(ldlt, ldltRevision, ls.K, ls.revision)) {
+    message = "CHOLMOD: tangent not positive definite and LDL^T failed (singular)";
+    return false;
+  }
+  message = "tangent not positive definite: solved by LDL^T";
+  active = Active::Ldlt;
+  return true;
+}
+
+bool LinearSolver::Impl::umfpackLu(const LinearSystem& ls, std::string& message) {
+  if (ls.symmetric) full = fullMatrix(ls);
+  if (!run(umfpackFull, umfRevision, ls.symmetric ? full : ls.K, ls.revision)) {
+    message = "UMFPACK: singular tangent";
+    return false;
+  }
+  active = Active::Umfpack;
+  return true;
+}
+
+// Factorises S + sigma diag(|S_ii|) for sigma = 0 (or a tenth of the last shift), growing by
+// 100x up to 1 while CHOLMOD reports it not positive definite.
+bool LinearSolver::Impl::factorisePreconditioner(const LinearSystem& ls, std::string& message) {
+  if (pre.lu) {
+    if (ls.symmetric) full = fullMatrix(ls);
+    if (!run(pre.umf, pre.revision, ls.symmetric ? full : ls.K, ls.revision)) {
+      pre.valid = false;
+      message = "Krylov: UMFPACK preconditioner singular";
+      return false;
+    }
+    pre.valid = pre.fresh = true;
+    pre.stale = false;
+    return true;
+  }
+  symmetricPart(ls, pre.S);
+  if (pre.revision != ls.revision) {
+    pre.diagonalAt = diagonalPositions(pre.S);
+    const auto t0 = std::chrono::steady_clock::now();
+    pre.llt.analyzePattern(pre.S);
+    stats.analyse += seconds(t0);
+    ++stats.analyses;
+    pre.revision = ls.revision;
+  }
+  const Index n = pre.S.cols();
+  pre.diagonal.resize(n);
+  for (Index i = 0; i < n; ++i) pre.diagonal(i) = std::abs(pre.S.valuePtr()[pre.diagonalAt[i]]);
+  double sigma = pre.shift > 0 ? pre.shift / 10 : 0, applied = 0;
+  for (;;) {
+    for (Index i = 0; i < n; ++i) pre.S.valuePtr()[pre.diagonalAt[i]] += (sigma - applied) * pre.diagonal(i);
+    applied = sigma;
+    Span span(trace, "factorise", "solver");
+    span.items(n);
+    const auto t0 = std::chrono::steady_clock::now();
+    pre.llt.factorize(pre.S);
+    stats.factorise += seconds(t0);
+    ++stats.factorisations;
+    if (pre.llt.info() == Eigen::Success) break;
+    if (sigma >= 1) {
+      pre.valid = false;
+      message = "Krylov: symmetric part not positive definite even with a shift of 1 diag";
+      return false;
+    }
+    sigma = sigma > 0 ? std::min(1.0, sigma * 100) : 1e-8;
+  }
+  stats.shifted += sigma > 0;
+  stats.shift = pre.shift = sigma;
+  pre.valid = pre.fresh = true;
+  pre.stale = false;
+  return true;
+}
+
+bool LinearSolver::Impl::krylovFactorise(const LinearSystem& ls, std::string& message, bool lu) {
+  system = &ls;
+  if (pre.lu != lu) pre.valid = false, pre.revision = -1, pre.shift = 0, pre.lu = lu;
+  if (pre.valid && pre.revision == ls.revision && !pre.stale) {
+    pre.fresh = false;
+    ++stats.reuses;
+    active = Active::Krylov;
+    return true;
+  }
+  if (pre.valid && pre.revision == ls.revision) ++stats.refactorisations;
+  if (!factorisePreconditioner(ls, message)) return false;
+  active = Active::Krylov;
+  return true;
+}
+
+// GMRES with the factor at hand, at most `limit` iterations.
+GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit) {
+  const LinearSystem& ls = *system;
+  const LinearOperator A = [&ls](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    if (ls.symmetric)
+      y.noalias() = ls.K.selfadjointView<Eigen::Upper>() * v;
+    else
+      y.noalias() = ls.K * v;
+  };
+  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    if (pre.lu)
+      y = pre.umf.solve(v);
+    else
+      y = pre.llt.solve(v);
+  };
+  GmresSettings g;
+  g.tolerance = krylov.tolerance;
+  g.restart = krylov.restart;
+  g.maxIterations = limit;
+  x.setZero(b.size());
+  Span span(trace, "krylov", "solver");
+  const GmresResult r = gmres(A, M, b, x, g, workspace);
+  span.items(r.iterations);
+  stats.krylovIterations += r.iterations;
+  stats.maxKrylovIterations = std::max(stats.maxKrylovIterations, r.iterations);
+  return r;
+}
+
+// Iterations allowed with a re-used factor: refactorAbove. A count, not a time budget: a
+// decision on measured times would make the results depend on the machine's load.
+int LinearSolver::Impl::reuseLimit() const { return std::min(krylov.refactorAbove, krylov.maxIterations); }
+
+// With a re-used factor GMRES stops at reuseLimit(): a factor that stale costs more in
+// iterations than a new one; the solve is then redone with a fresh factor, up to
+// maxIterations.
+void LinearSolver::Impl::krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  GmresResult r = gmresOnce(b, x, pre.fresh ? krylov.maxIterations : reuseLimit());
+  if (!r.converged && !pre.fresh) {
+    std::string message;
+    ++stats.refactorisations;
+    if (factorisePreconditioner(*system, message)) r = gmresOnce(b, x, krylov.maxIterations);
+  }
+  if (!r.converged) ++stats.krylovFailures;
+  if (!r.converged || r.iterations > krylov.refactorAbove) pre.stale = true;
+}
 
 LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
 LinearSolver::~LinearSolver() = default;
@@ -60,38 +286,41 @@ void LinearSolver::setLuSolver(LuSolver lu) {
   impl_->luKind = lu;
 }
 
+void LinearSolver::setStrategy(LinearStrategy s) { impl_->strategy = s; }
+void LinearSolver::setKrylov(const KrylovSettings& k) { impl_->krylov = k; }
 void LinearSolver::setBlasThreads(int threads) { impl_->blasThreads = threads; }
+void LinearSolver::setTrace(Trace* trace) { impl_->trace = trace; }
+LinearStrategy LinearSolver::strategy() const { return impl_->strategy; }
+
+LinearStrategy LinearSolver::resolved(Index n) const {
+  if (impl_->strategy != LinearStrategy::Auto) return impl_->strategy;
+  return n < kUmfpackFromEquations ? LinearStrategy::Direct : LinearStrategy::Umfpack;
+}
 
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   Impl& m = *impl_;
   if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
   m.active = Active::None;
-  if (!ls.symmetric) {
-    const bool umfpack = m.luKind == LuSolver::Umfpack;
-    if (umfpack ? !m.run(m.umfpack, m.luRevision, ls.K, ls.revision)
-                : !m.run(m.sparseLu, m.luRevision, ls.K, ls.revision)) {
-      message = umfpack ? "UMFPACK: singular tangent" : "SparseLU: singular tangent";
-      return false;
-    }
-    m.active = Active::Lu;
-    return true;
+  const bool automatic = m.strategy == LinearStrategy::Auto;
+  switch (resolved(ls.freeCount)) {
+    case LinearStrategy::Umfpack:
+      // auto: UMFPACK reports some large tangents singular that CHOLMOD or SparseLU factorise
+      // (the 250-fibre yarn's, docs/RESULTS.md); those fall back to the direct path.
+      if (m.umfpackLu(ls, message) || !automatic) return m.active != Active::None;
+      ++m.stats.fallbacks;
+      message.clear();
+      return m.direct(ls, message);
+    case LinearStrategy::Krylov: return m.krylovFactorise(ls, message, false);
+    case LinearStrategy::KrylovLu: return m.krylovFactorise(ls, message, true);
+    default: return m.direct(ls, message);
   }
-  if (m.run(m.llt, m.lltRevision, ls.K, ls.revision)) {
-    m.active = Active::Llt;
-    return true;
-  }
-  ++m.stats.fallbacks;
-  if (!m.run(m.ldlt, m.ldltRevision, ls.K, ls.revision)) {
-    message = "CHOLMOD: tangent not positive definite and LDL^T failed (singular)";
-    return false;
-  }
-  message = "tangent not positive definite: solved by LDL^T";
-  m.active = Active::Ldlt;
-  return true;
 }
 
 void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& m = *impl_;
+  if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
+  Span span(m.trace, "solve", "solver");
+  span.items(1);
   const auto t0 = std::chrono::steady_clock::now();
   switch (m.active) {
     case Active::Llt: x = m.llt.solve(b); break;
@@ -102,11 +331,15 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
       else
         x = m.sparseLu.solve(b);
       break;
+    case Active::Umfpack: x = m.umfpackFull.solve(b); break;
+    case Active::Krylov: m.krylovSolve(b, x); break;
     case Active::None: x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN()); break;
   }
   m.stats.solve += seconds(t0);
+  ++m.stats.solves;
 }
 
 const LinearSolveStats& LinearSolver::stats() const { return impl_->stats; }
+void LinearSolver::resetStats() { impl_->stats = LinearSolveStats{}; }
 
 }  // namespace fibra

@@ -1,18 +1,35 @@
-// Linear solver system: solves K dq = -r on the free DOFs.
+// Linear solver system: solves K dq = -r on the free DOFs, by one of several strategies.
 //
-// Reads  LinearSystem (K, revision, symmetric). Owns its factorisation; no shared state.
-// Symmetric K: CHOLMOD supernodal LL^T; the symbolic analysis (ordering, supernodes) is redone
-//   only when the pattern revision changes, the numeric factorisation every call. A tangent
-//   that is not positive definite (unstable equilibria, buckling) falls back to CHOLMOD's
-//   simplicial LDL^T for that call, and the report says so.
-// Non-symmetric K (friction): sparse LU with the same analysis reuse, by UMFPACK or by Eigen's
-//   SparseLU (LuSolver; which is faster is measured in bench/contact_mechanics.cpp).
+// Reads  LinearSystem (K, revision, symmetric). Owns its factorisations; no shared state.
+// Strategies (LinearStrategy; docs/RESULTS.md "Linear solves at paper scale" has the figures):
+// - Direct: symmetric K by CHOLMOD supernodal LL^T (a tangent that is not positive definite
+//   falls back to CHOLMOD's simplicial LDL^T for that call, counted in `fallbacks`);
+//   non-symmetric K (friction) by sparse LU, UMFPACK or Eigen's SparseLU (LuSolver). Fresh
+//   numeric factorisation every call; the symbolic analysis only when the pattern changes.
+// - Umfpack: UMFPACK LU of the full K whatever its symmetry (no positive-definite requirement).
+// - Krylov: the symmetric part S = (K + K^T)/2, shifted when it is not positive definite,
+//   S_s = S + sigma diag(|S_ii|), is factorised by CHOLMOD supernodal LL^T and used as the
+//   right preconditioner of GMRES (systems/krylov.h) on the true K, to a relative residual
+//   |K x - b| <= tolerance |b|. The factor is re-used across calls to factorise (Newton
+//   iterations, contact passes) and refactorised only when the pattern revision changes, when
+//   the last solve needed more than `refactorAbove` Krylov iterations, or when GMRES with a
+//   re-used factor does not converge within `refactorAbove` iterations (then at once, with the
+//   K at hand, and the solve redone with up to `maxIterations`).
+//   sigma starts at 0 (a tenth of the last shift that worked) and grows by 100x up to 1.
+// - KrylovLu: the same, preconditioned by UMFPACK's LU of the full K (re-used likewise).
+// - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
+//   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays);
+//   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
-// count is a process-wide setting: with setBlasThreads(n), every factorisation first sets it to
-// n (the world passes its own thread count); 0 leaves it alone.
+// count is a process-wide setting: with setBlasThreads(n), every factorisation and solve first
+// sets it to n (the world passes its own thread count); 0 leaves it alone.
+// Trace spans (setTrace): "factorise" (items: equations), "solve" (items: right-hand sides) and
+// "krylov" (items: GMRES iterations), category "solver".
 #pragma once
 
 #include "components/linear_system.h"
+#include "components/solver_settings.h"
+#include "core/trace.h"
 
 #include <memory>
 #include <string>
@@ -20,11 +37,30 @@
 namespace fibra {
 
 struct LinearSolveStats {
-  double analyse = 0, factorise = 0, solve = 0;  // seconds, accumulated
-  int analyses = 0, factorisations = 0, fallbacks = 0;
+  double analyse = 0, factorise = 0, solve = 0;  // seconds, accumulated (solve: with Krylov)
+  int analyses = 0, factorisations = 0;
+  int fallbacks = 0;           // LL^T -> LDL^T (Direct), or UMFPACK -> Direct (Auto)
+  int solves = 0;              // right-hand sides solved
+  // Krylov strategy
+  int krylovIterations = 0;    // GMRES iterations, summed over solves
+  int maxKrylovIterations = 0; // most GMRES iterations of one solve
+  int reuses = 0;              // calls to factorise that kept the factor
+  int refactorisations = 0;    // factorisations forced by the Krylov count or a failure
+  int shifted = 0;             // factorisations that needed sigma > 0
+  int krylovFailures = 0;      // solves that missed the tolerance even with a fresh factor
+  double shift = 0;            // sigma of the last factorisation
 };
 
-enum class LuSolver { Umfpack, EigenSparseLu };
+
+// Auto's rule: UMFPACK from this many equations (measured, docs/RESULTS.md: at 6.9k equations
+// SparseLU and UMFPACK factorise a frictional bundle tangent in the same time, at 16.8k UMFPACK
+// is 7x faster; frictionless tangents that are not positive definite favour UMFPACK earlier).
+inline constexpr Index kUmfpackFromEquations = 7000;
+
+// The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov").
+const char* strategyName(LinearStrategy s);
+// Parses a name of strategyName; false when it is none.
+bool parseStrategy(const std::string& name, LinearStrategy& s);
 
 class LinearSolver {
  public:
@@ -33,14 +69,23 @@ class LinearSolver {
   LinearSolver(const LinearSolver&) = delete;
   LinearSolver& operator=(const LinearSolver&) = delete;
 
-  // Factorises ls.K; false (with a message) if it is singular.
+  // Prepares to solve with ls.K (factorises, or keeps a preconditioner); false (with a
+  // message) if K is singular. Krylov and Auto keep a pointer to ls: it must stay alive, and
+  // solve() uses the values of ls.K at the time of the solve.
   bool factorise(const LinearSystem& ls, std::string& message);
-  // x = K^-1 b (free DOFs); after a successful factorise.
+  // x = K^-1 b (free DOFs, size freeCount); after a successful factorise.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 
   const LinearSolveStats& stats() const;
-  void setLuSolver(LuSolver lu);  // for non-symmetric K; default EigenSparseLu
+  void resetStats();
+  void setLuSolver(LuSolver lu);  // Direct, non-symmetric K; default EigenSparseLu
+  void setStrategy(LinearStrategy s);  // default Auto
+  void setKrylov(const KrylovSettings& k);
   void setBlasThreads(int threads);  // > 0: OpenBLAS threads set before each factorisation
+  void setTrace(Trace* trace);       // spans recorded when set
+  LinearStrategy strategy() const;   // as set (Auto stays Auto)
+  // The strategy used for a system of n equations (Auto resolved).
+  LinearStrategy resolved(Index n) const;
 
  private:
   struct Impl;

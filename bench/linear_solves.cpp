@@ -1,0 +1,276 @@
+// Linear solves at paper scale: fibra's own tangents of the paper's twisted yarn (61 and 250
+// fibres) and woven fabric (480 fibres), built on the fly (bench/paper_scenes.h), solved by each
+// strategy of systems/linear_solver.h on the same matrices; then whole increments of the
+// squeezed yarn with each strategy (Newton iterations, refactorisations, time per iteration).
+//
+//   build/bench_linear_solves --case yarn61|yarn250|fabric480|bundle7|bundle19|bundle37
+//       [--friction on|off]
+//       [--strategy cholmod,direct,umfpack,krylov] [--threads 1,2] [--repeats 3]
+//       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
+//       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
+//
+// Matrices: the tangent Newton assembled after --warm iterations of the first increment (see
+// warmWorld), b random (seeded). Per
+// strategy, a fresh solver each repeat (medians): analyse, numeric factorisation, one solve of
+// K x = -r (with Krylov: its iterations), the residual |K x - b| / |b| checked here with the
+// full K, and the peak resident memory of that repeat (VmHWM after a reset of the peak).
+// "cholmod" is the reference of the goal: a fresh CHOLMOD supernodal factorisation of
+// the symmetric part (K + K^T)/2 and one solve with it (of the symmetric part; not of K).
+// Newton (--newton N): the first N increments of the scene with each strategy, per increment
+// the Newton iterations, wall time, and the solver's counts.
+#include "bench/bench_util.h"
+#include "bench/contact_scenes.h"
+#include "bench/paper_scenes.h"
+#include "engine/world_state.h"
+
+#include <Eigen/CholmodSupport>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+using namespace fibra;
+
+namespace {
+
+struct Options {
+  std::string name = "yarn61";
+  bool friction = true;
+  std::vector<std::string> strategies{"cholmod", "umfpack", "krylov"};
+  std::vector<int> threads{1, 2};
+  int repeats = 3;
+  int newton = 0;
+  int warm = 3;                       // Newton iterations before the matrices are taken
+  std::string warmStrategy = "umfpack";
+  int refactorAbove = KrylovSettings{}.refactorAbove;
+  int maxIterations = 30;  // Newton iterations per attempt
+  int cutbacks = 8;        // per increment
+  std::vector<std::string> newtonStrategies{"krylov", "umfpack"};
+  std::string csv = "linear_solves.csv";
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  return out;
+}
+
+SceneDef sceneOf(const Options& o, int increments) {
+  const double mu = o.friction ? 0.1 : 0;
+  if (o.name == "yarn61") return scenes::yarnScene(61, mu, 0.002, increments);
+  if (o.name == "yarn250") return scenes::yarnScene(250, mu, 0.002, increments);
+  if (o.name == "fabric480") return scenes::fabricScene(mu, increments);
+  // smaller sizes for the rule of `auto`: squeezed bundles (bench/contact_scenes.h)
+  if (o.name == "bundle7") return scenes::bundle(1, 10, 0.01, 5e-4, mu);
+  if (o.name == "bundle19") return scenes::bundle(2, 20, 0.01, 5e-4, mu);
+  if (o.name == "bundle37") return scenes::bundle(3, 40, 0.01, 5e-4, mu);
+  std::fprintf(stderr, "unknown case %s\n", o.name.c_str());
+  std::exit(2);
+}
+
+// Peak resident memory since the last reset, GiB (Linux /proc).
+void resetPeak() { std::ofstream("/proc/self/clear_refs") << "5"; }
+double peakGiB() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / (1024.0 * 1024.0);
+  return NAN;
+}
+
+// |K x - b| / |b| with the full K (the stored upper triangle when symmetric).
+double relativeResidual(const LinearSystem& ls, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  Eigen::VectorXd Kx = ls.symmetric ? Eigen::VectorXd(ls.K.selfadjointView<Eigen::Upper>() * x)
+                                    : Eigen::VectorXd(ls.K * x);
+  return (Kx - b).norm() / b.norm();
+}
+
+struct Row {
+  double analyse = 0, factorise = 0, solve = 0, residual = 0, memory = 0;
+  int iterations = 0, shifted = 0;
+};
+
+double medianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// The reference: a fresh CHOLMOD supernodal LL^T of the symmetric part, one solve.
+Row cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& b) {
+  Row r;
+  SparseMatrix S;
+  if (ls.symmetric) S = ls.K;
+  else S = (0.5 * (ls.K + SparseMatrix(ls.K.transpose()))).triangularView<Eigen::Upper>();
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  llt.cholmod().print = 0;
+  r.analyse = bench::seconds([&] { llt.analyzePattern(S); });
+  r.factorise = bench::seconds([&] { llt.factorize(S); });
+  if (llt.info() != Eigen::Success) r.shifted = -1;  // not positive definite
+  Eigen::VectorXd x;
+  r.solve = bench::seconds([&] { x = llt.solve(b); });
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
+Row strategyRun(const std::string& name, const LinearSystem& ls, const Eigen::VectorXd& b, int threads) {
+  if (name == "cholmod") return cholmodReference(ls, b);
+  LinearStrategy s;
+  if (!parseStrategy(name, s)) std::exit(2);
+  LinearSolver solver;
+  solver.setStrategy(s);
+  solver.setBlasThreads(threads);
+  std::string msg;
+  Row r;
+  if (!solver.factorise(ls, msg)) std::printf("    %s: %s\n", name.c_str(), msg.c_str());
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  const LinearSolveStats& st = solver.stats();
+  r.analyse = st.analyse;
+  r.factorise = st.factorise;
+  r.solve = st.solve;
+  r.iterations = st.krylovIterations;
+  r.shifted = st.fallbacks + st.shifted;
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
+// A world whose linear system holds a tangent met on the way: after `warm` Newton iterations of
+// the scene's first increment (solved by `warmStrategy`; the attempt then stops, and the tangent
+// Newton assembled last stays in ls: contact detected, friction sliding), or, with warm = 0, the
+// tangent at the start (contact detected, no slip yet: symmetric even with friction).
+std::unique_ptr<WorldState> warmWorld(const Options& o, int threads, double& assemble) {
+  auto w = std::make_unique<WorldState>();
+  w->scene = sceneOf(o, 5);
+  w->def.threads = threads;
+  LinearStrategy s;
+  if (!parseStrategy(o.warmStrategy, s)) std::exit(2);
+  w->def.linearStrategy = s;
+  for (StepDef& st : w->scene.steps) st.maxIterations = std::max(o.warm, 1), st.maxCutbacks = 0;
+  buildWorld(*w);
+  const double t = bench::seconds([&] {
+    if (o.warm == 0) {
+      runStage(*w, w->pipeline.detect, 0);
+      assemble = bench::median(3, [&] { runStage(*w, w->pipeline.assemble, 0, true); });
+      return;
+    }
+    const StepReport r = advance(*w);
+    assemble = r.timings.assemble / std::max(r.totalIterations, 1);
+    std::printf("warm-up (%s, %d threads): %d Newton iterations, %d contact elements, ",
+                o.warmStrategy.c_str(), threads, r.totalIterations, int(r.contact.elements));
+  });
+  std::printf("%.1f s; assembly %.3f s per iteration\n", t, assemble);
+  return w;
+}
+
+void matrices(const Options& o, std::FILE* csv) {
+  std::printf("%-8s %3s %-8s %8s %10s %9s %9s %8s %6s %9s %8s %5s\n", "case", "thr", "strategy",
+              "dofs", "nonzeros", "assemble", "analyse", "factor", "solve", "krylov_it",
+              "residual", "mem GiB");
+  double assemble = 0;  // s per iteration, on the most threads asked
+  auto w = warmWorld(o, *std::max_element(o.threads.begin(), o.threads.end()), assemble);
+  const LinearSystem ls = w->system;  // the tangent met on the way (warmWorld)
+  // b: a residual-like right-hand side that does not vanish at convergence (seeded)
+  Eigen::VectorXd b = Eigen::VectorXd::Random(ls.freeCount);
+  for (int threads : o.threads) {
+    bench::setBlasThreads(threads);
+    for (const std::string& s : o.strategies) {
+      std::vector<Row> rows;
+      for (int k = 0; k < o.repeats; ++k) {
+        resetPeak();
+        rows.push_back(strategyRun(s, ls, b, threads));
+        rows.back().memory = peakGiB();
+      }
+      auto med = [&](double Row::*f) {
+        std::vector<double> v;
+        for (const Row& r : rows) v.push_back(r.*f);
+        return medianOf(v);
+      };
+      const Row& r0 = rows.front();
+      std::printf("%-8s %3d %-8s %8d %10ld %9.3f %9.3f %8.3f %6.3f %9d %8.1e %5.2f%s\n",
+                  o.name.c_str(), threads, s.c_str(), int(ls.freeCount), long(ls.K.nonZeros()),
+                  assemble, med(&Row::analyse), med(&Row::factorise), med(&Row::solve),
+                  r0.iterations, med(&Row::residual), med(&Row::memory),
+                  r0.shifted < 0 ? "  (not positive definite)" : r0.shifted > 0 ? "  (shifted/LDLT)" : "");
+      if (csv)
+        std::fprintf(csv, "%s,%s,%d,%s,%d,%ld,%.4f,%.4f,%.4f,%.4f,%d,%.3e,%.3f\n", o.name.c_str(),
+                     o.friction ? "on" : "off", threads, s.c_str(), int(ls.freeCount),
+                     long(ls.K.nonZeros()), assemble, med(&Row::analyse), med(&Row::factorise),
+                     med(&Row::solve), r0.iterations, med(&Row::residual), med(&Row::memory));
+    }
+  }
+}
+
+// The first o.newton increments of the scene with each strategy.
+void newton(const Options& o) {
+  std::printf("Newton: %d increment(s), %s\n", o.newton, o.friction ? "friction 0.1" : "frictionless");
+  for (int threads : o.threads)
+    for (const std::string& name : o.newtonStrategies) {
+      bench::setBlasThreads(threads);
+      WorldState w;
+      w.scene = sceneOf(o, 5);
+      w.scene.solver.krylov.refactorAbove = o.refactorAbove;
+      for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
+      w.def.threads = threads;
+      LinearStrategy s;
+      if (!parseStrategy(name, s)) std::exit(2);
+      w.def.linearStrategy = s;
+      auto last = std::chrono::steady_clock::now();
+      w.def.progress = [&](const Progress& p) {  // one line per Newton iteration
+        const LinearSolveStats& st = w.solver.stats();
+        std::printf("    t %.3f it %2d residual %.2e  %.2f s  (factorisations %d, krylov it %d, shift %.0e)\n", p.time,
+                    p.iteration, p.residual, bench::seconds([] {}) + std::chrono::duration<double>(
+                    std::chrono::steady_clock::now() - last).count(), st.factorisations, st.krylovIterations, st.shift);
+        last = std::chrono::steady_clock::now();
+      };
+      buildWorld(w);
+      int iterations = 0;
+      double wall = 0, assemble = 0, factorise = 0, solve = 0;
+      for (int inc = 1; inc <= o.newton; ++inc) {
+        StepReport rep;
+        const double t = bench::seconds([&] { rep = advance(w); });
+        const LinearSolveStats& st = w.solver.stats();
+        std::printf("  thr %d %-8s incr %d: %-9s %3d it (%d cut) %8.2f s  asm %.2f fac %.2f sol %.2f | "
+                    "factorisations %d refactor %d reuses %d krylov it %d (max %d) fail %d shift %.0e\n",
+                    threads, name.c_str(), inc, rep.status == StepStatus::Converged ? "converged" : "FAILED",
+                    rep.totalIterations, rep.cutbacks, t, rep.timings.assemble, rep.timings.factorise,
+                    rep.timings.solve, st.factorisations, st.refactorisations, st.reuses,
+                    st.krylovIterations, st.maxKrylovIterations, st.krylovFailures, st.shift);
+        iterations += rep.totalIterations;
+        wall += t, assemble += rep.timings.assemble, factorise += rep.timings.factorise, solve += rep.timings.solve;
+        if (rep.status != StepStatus::Converged) break;
+      }
+      std::printf("  thr %d %-8s total %d it, %.2f s: per iteration %.3f s (assemble %.3f, factorise %.3f, "
+                  "solve %.3f)\n", threads, name.c_str(), iterations, wall, wall / iterations,
+                  assemble / iterations, factorise / iterations, solve / iterations);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string k = argv[i], v = argv[i + 1];
+    if (k == "--case") o.name = v;
+    else if (k == "--friction") o.friction = v == "on";
+    else if (k == "--strategy") o.strategies = split(v);
+    else if (k == "--threads") { o.threads.clear(); for (auto& t : split(v)) o.threads.push_back(std::stoi(t)); }
+    else if (k == "--repeats") o.repeats = std::stoi(v);
+    else if (k == "--newton") o.newton = std::stoi(v);
+    else if (k == "--newton-strategy") o.newtonStrategies = split(v);
+    else if (k == "--csv") o.csv = v;
+    else if (k == "--warm") o.warm = std::stoi(v);
+    else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
+    else if (k == "--warm-strategy") o.warmStrategy = v;
+    else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
+    else if (k == "--max-iterations") o.maxIterations = std::stoi(v);
+  }
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  std::printf("case %s, friction %s\n", o.name.c_str(), o.friction ? "on (mu 0.1)" : "off");
+  std::FILE* csv = o.strategies.empty() ? nullptr : bench::openCsv(o.csv,
+      "case,friction,threads,strategy,dofs,nonzeros,assemble_s,analyse_s,factorise_s,solve_s,"
+      "krylov_iterations,residual,peak_gib");
+  if (!o.strategies.empty() && o.strategies[0] != "none") matrices(o, csv);
+  if (csv) std::fclose(csv);
+  if (o.newton > 0) newton(o);
+  return 0;
+}

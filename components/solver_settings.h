@@ -1,0 +1,19 @@
+// Linear solver settings: which strategy solves the Newton systems and the Krylov method's
+// parameters. Plain data, set by the scene's `solver` section (engine/scene.h SolverDef) or by
+// WorldDef, read by the linear solver system (systems/linear_solver.h, which documents them).
+#pragma once
+
+namespace fibra {
+
+enum class LuSolver { Umfpack, EigenSparseLu };
+enum class LinearStrategy { Auto, Direct, Umfpack, Krylov, KrylovLu };
+
+struct KrylovSettings {
+  double tolerance = 1e-8;   // |K x - b| / |b| asked of every solve (dimensionless; LU reaches
+                             // 1e-9 on the yarn tangents, docs/RESULTS.md)
+  int restart = 40;          // GMRES basis vectors per cycle
+  int maxIterations = 200;   // GMRES iterations per solve
+  int refactorAbove = 40;    // a solve needing more iterations: refactorise at the next call
+};
+
+}  // namespace fibra
