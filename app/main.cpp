@@ -32,8 +32,10 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace {
@@ -133,12 +135,24 @@ void checkPaths(const Options& o) {
   const fs::path traceDir = fs::path(o.trace).parent_path();
   if (!o.trace.empty() && !traceDir.empty() && !fs::is_directory(traceDir))
     throw UsageError("--trace: no directory '" + traceDir.string() + "'");
+  if (!o.trace.empty()) {  // find out now, not after a long run, whether it can be written
+    const std::string probe = o.trace + ".part";
+    const bool existed = fs::exists(probe);
+    const bool writable = std::ofstream(probe, std::ios::app).good();
+    if (!existed) fs::remove(probe);
+    if (!writable) throw UsageError("--trace: cannot write '" + o.trace + "'");
+  }
 }
 
 Options parseRun(int argc, char** argv) {
   Options o;
+  std::set<std::string> seen;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a.starts_with("--") && !seen.insert(a == "--verbose" ? "--quiet" : a).second)
+      throw UsageError(a == "--quiet" || a == "--verbose"
+                           ? "--quiet and --verbose: give at most one of them"
+                           : a + ": given twice");
     if (a == "--out" || a == "--threads" || a == "--trace" || a == "--vtu-format") {
       if (i + 1 >= argc) throw UsageError(a + ": missing value");
       valueOption(o, a, argv[++i]);

@@ -131,3 +131,20 @@ TEST_CASE("fibra --trace writes every span's start and length to the nanosecond,
   }
   CHECK(crossed == 0);
 }
+
+TEST_CASE("fibra run refuses repeated or conflicting options and an unwritable trace before solving") {
+  TempDir scratch("cli_options");
+  const std::string scene = sourcePath("samples/cantilever.json");
+  const std::string out = (scratch.path() / "o").string();
+  const RunResult twice = runFibra({"run", scene, "--out", out, "--out", out}, scratch);
+  CHECK(twice.status == 2);
+  CHECK(twice.output.find("--out: given twice") != std::string::npos);
+  const RunResult both = runFibra({"run", scene, "--out", out, "--quiet", "--verbose"}, scratch);
+  CHECK(both.status == 2);
+  CHECK(both.output.find("--quiet and --verbose") != std::string::npos);
+  const RunResult trace = runFibra({"run", scene, "--out", out, "--trace", "/proc/nope.json"}, scratch);
+  CHECK(trace.status == 2);
+  CHECK(trace.output.find("--trace: cannot write") != std::string::npos);
+  CHECK(trace.output.find("solved") == std::string::npos);  // refused before the run
+  CHECK_FALSE(fs::exists(out));
+}
