@@ -55,6 +55,7 @@ struct ContactReport {
   bool loopCapped = false;     // loop A stopped at its cap without meeting its exit test
   double maxOverlap = 0;       // true overlap r_I + r_J - centre distance at the closest
                                // sections (deformed radii r), max over the pairs found, mm
+  double maxOverlapRatio = 0;  // the same / the fibre-fibre p_max
   int redetectZoneChanges = 0; // zones that appear, vanish or change their element count
   double redetectGapChange = 0;     // max |g_N new - g_N used| / p_max over paired elements
   double redetectParticleShift = 0; // max particle shift (arc length and section) / R, same

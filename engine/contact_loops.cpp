@@ -56,6 +56,7 @@ void checkContactSet(WorldState& w, double t, ContactReport& report) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
   report.maxOverlap = trueOverlap(w.fibres, w.fibres.q, w.trial.elements);
+  report.maxOverlapRatio = report.maxOverlap / w.contact.pMax;
   compareContactSets(w.fibres, used, w.trial, report);
   w.trial = std::move(used);
 }
