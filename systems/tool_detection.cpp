@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 namespace fibra {
 namespace {
@@ -13,9 +15,9 @@ namespace {
 // A contact element for the particle (element, z, xi): its normal is the surface normal at the
 // closest point, its tool point the surface point under it.
 void addParticle(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
-                 const Eigen::Vector2d& xi, const RigidMotion& m, ToolContactStore& c) {
+                 const Section& sec, const Eigen::Vector2d& xi, const RigidMotion& m,
+                 ToolContactStore& c) {
   const Index f = fs.elementFibre[e];
-  const Section sec = sectionAt(fs, fs.q, {e, z});
   const Vec3 x = sec.x0 + xi(0) * sec.g1 + xi(1) * sec.g2;
   const SurfacePoint sp = closestSurfacePoint(tools, tool, m, x);
   const RigidMotion inverse{m.R.transpose(), m.centre, -m.R.transpose() * m.shift};
@@ -33,18 +35,30 @@ void addParticle(const FibreStore& fs, const ToolStore& tools, Index tool, Index
   c.gRev0.push_back(Vec3::Zero());
 }
 
-double reachOf(const FibreStore& fs, Index f, double proximity) {
-  return std::isfinite(proximity) ? proximity : std::max(fs.radius[f], 0.5 * elementLength(fs, f));
+// The section at (element, z) when its centre is within R + Delta of the tool, with the closest
+// surface point to that centre.
+std::optional<std::pair<Section, SurfacePoint>> sectionNearTool(const FibreStore& fs,
+                                                                const ToolStore& tools, Index tool,
+                                                                Index e, double z,
+                                                                const RigidMotion& m,
+                                                                double proximity) {
+  const Index f = fs.elementFibre[e];
+  const Section sec = sectionAt(fs, fs.q, {e, z});
+  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
+  const double reach =
+      std::isfinite(proximity) ? proximity : std::max(fs.radius[f], 0.5 * elementLength(fs, f));
+  if (centre.distance > fs.radius[f] + reach) return std::nullopt;
+  return std::pair{sec, centre};
 }
 
 // Lateral contact at (element, z): the outline point facing the tool (direction -N).
 void addLateral(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
                 const RigidMotion& m, double proximity, ToolContactStore& c) {
-  const Index f = fs.elementFibre[e];
-  const Section sec = sectionAt(fs, fs.q, {e, z});
-  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
-  if (centre.distance > fs.radius[f] + reachOf(fs, f, proximity)) return;
-  addParticle(fs, tools, tool, e, z, outlinePoint(sec.g1, sec.g2, fs.radius[f], -centre.normal), m, c);
+  const auto near = sectionNearTool(fs, tools, tool, e, z, m, proximity);
+  if (!near) return;
+  const auto& [sec, centre] = *near;
+  const double R = fs.radius[fs.elementFibre[e]];
+  addParticle(fs, tools, tool, e, z, sec, outlinePoint(sec.g1, sec.g2, R, -centre.normal), m, c);
 }
 
 // The flat end face of a fibre at (element, z = +-1): its centre and kEndRim points of its rim
@@ -52,15 +66,14 @@ void addLateral(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
 constexpr int kEndRim = 8;
 void addEndFace(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
                 const RigidMotion& m, double proximity, ToolContactStore& c) {
-  const Index f = fs.elementFibre[e];
-  const Section sec = sectionAt(fs, fs.q, {e, z});
-  const SurfacePoint centre = closestSurfacePoint(tools, tool, m, sec.x0);
-  if (centre.distance > fs.radius[f] + reachOf(fs, f, proximity)) return;
-  addParticle(fs, tools, tool, e, z, Eigen::Vector2d::Zero(), m, c);
+  const auto near = sectionNearTool(fs, tools, tool, e, z, m, proximity);
+  if (!near) return;
+  const Section& sec = near->first;
+  const double R = fs.radius[fs.elementFibre[e]];
+  addParticle(fs, tools, tool, e, z, sec, Eigen::Vector2d::Zero(), m, c);
   for (int k = 0; k < kEndRim; ++k) {
     const double phi = 2 * std::numbers::pi * k / kEndRim;
-    addParticle(fs, tools, tool, e, z,
-                fs.radius[f] * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
+    addParticle(fs, tools, tool, e, z, sec, R * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
   }
 }
 
