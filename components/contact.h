@@ -67,6 +67,10 @@ struct ContactElementStore {
   // --- per contact element ---
   std::vector<Index> zone;        // owning zone (ZoneStore index)
   std::vector<double> zeta;       // relative abscissa on the intermediate geometry, in [0, 1]
+  std::vector<double> length;     // the element's share of the intermediate geometry, mm (its
+                                  // line force is normal force / length)
+  std::vector<double> weight;     // length / mean length over the zone's elements (mean 1): scales
+                                  // the zone's penalty on this element
   // side I: the material particle (fibre, s, xi1, xi2); x = x0(s) + xi1 g1(s) + xi2 g2(s)
   std::vector<Index> fibreI;      // fibre of particle I
   std::vector<double> sI;         // reference arc length of the section of I, mm

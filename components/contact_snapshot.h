@@ -17,6 +17,8 @@ struct ContactSnapshot {
   std::vector<Vec3> normal;         // N, unit, from J (or the tool) to I
   std::vector<double> gap;          // g_N, mm (< 0: penetration)
   std::vector<double> normalForce;  // R_N, N
+  std::vector<double> length;       // the element's share of the contact line, mm (0: a point,
+                                    // e.g. on an end face); line force = R_N / length, N/mm
   std::vector<Vec3> friction;       // friction force on I, N (in the plane normal to N)
   std::vector<std::uint8_t> slip;   // 1: sliding (friction >= 99% of mu R_N, kSlidingShare)
   std::vector<std::uint8_t> tool;   // 0: fibre-fibre, 1: fibre-tool

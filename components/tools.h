@@ -49,6 +49,10 @@ struct ToolContactStore {
   std::vector<Index> zone;          // ToolZoneStore index: tool * fibres + fibre
   std::vector<Index> element;       // fibre element holding the particle
   std::vector<double> z;            // element parameter in [-1, 1]
+  std::vector<double> length;       // the particle's share of the deformed centreline, mm (0 on
+                                    // an end face): its line force is normal force / length
+  std::vector<double> weight;       // scales the zone's penalty on this element: 1 lateral,
+                                    // |t . N| on an end face (systems/tool_detection.cpp)
   std::vector<double> xi1, xi2;     // section coordinates of the particle, mm
   std::vector<ParticleWeights> side;  // the particle as weights on its element's DOFs
   std::vector<Vec3> normal;         // N, unit, from the tool to the fibre (fixed during Newton)

@@ -46,8 +46,10 @@ ContactSnapshot World::contactSnapshot() const {
   const double gMax = w.contact.gMax;
   ContactSnapshot c;
   const auto add = [&c](const Vec3& xI, const Vec3& xJ, const Vec3& N, const ContactForceStore& f,
-                        Index e, const Vec3& friction, bool slip, bool tool, Index I, Index J) {
+                        Index e, double length, const Vec3& friction, bool slip, bool tool, Index I,
+                        Index J) {
     c.particleI.push_back(xI), c.particleJ.push_back(xJ), c.normal.push_back(N);
+    c.length.push_back(length);
     c.gap.push_back(f.gap[e]), c.normalForce.push_back(f.normalForce[e]);
     c.friction.push_back(friction), c.slip.push_back(slip), c.tool.push_back(tool);
     c.fibreI.push_back(I), c.fibreJ.push_back(J);
@@ -56,7 +58,7 @@ ContactSnapshot World::contactSnapshot() const {
   const ContactForceStore& f = s.forces;
   for (Index e = 0; e < el.size(); ++e)
     add(particlePosition(w.fibres.q, el.sideI[e]), particlePosition(w.fibres.q, el.sideJ[e]),
-        el.normal[e], f, e, f.force[e] - f.normalForce[e] * el.normal[e],
+        el.normal[e], f, e, el.length[e], f.force[e] - f.normalForce[e] * el.normal[e],
         sliding(f.normalForce[e], f.gRev[e], gMax), false, el.fibreI[e], el.fibreJ[e]);
   const ToolContactStore& t = s.toolElements;
   const ContactForceStore& tf = s.toolForces;
@@ -64,7 +66,7 @@ ContactSnapshot World::contactSnapshot() const {
     const Vec3 x = particlePosition(w.fibres.q, t.side[i]);
     const double mu = w.tools.friction[t.tool[i]];
     const Vec3 friction = mu > 0 ? Vec3(-mu * tf.normalForce[i] / gMax * tf.gRev[i]) : Vec3::Zero();
-    add(x, x - tf.gap[i] * t.normal[i], t.normal[i], tf, i, friction,
+    add(x, x - tf.gap[i] * t.normal[i], t.normal[i], tf, i, t.length[i], friction,
         sliding(tf.normalForce[i], tf.gRev[i], gMax), true, w.fibres.elementFibre[t.element[i]],
         t.tool[i]);
   }

@@ -126,6 +126,7 @@ void writeContactVtu(const std::string& path, const ContactSnapshot& c, const Vt
   doc.array("normal", 3, flatten(c.normal));
   doc.array("gap", 1, c.gap);
   doc.array("normal_force", 1, c.normalForce);
+  doc.array("length", 1, c.length);
   doc.array("friction", 3, flatten(c.friction));
   doc.array("slip", 1, c.slip);
   doc.array("tool", 1, c.tool);

@@ -7,7 +7,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <vector>
 
 namespace fibra {
 namespace {
@@ -23,6 +26,10 @@ struct Intermediate {
   // (1 - zeta) s1 + zeta s2: exactly s1 and s2 at the zone ends
   double sI(double zeta) const { return (1 - zeta) * sI1 + zeta * sI2; }
   double sJ(double zeta) const { return (1 - zeta) * sJ1 + zeta * sJ2; }
+  // x_int(zeta), mm
+  Vec3 position(double zeta) const {
+    return 0.5 * (centrelineAt(fs, cl, I, sI(zeta)).x + centrelineAt(fs, cl, J, sJ(zeta)).x);
+  }
   // dx_int / dzeta, mm
   Vec3 tangent(double zeta) const {
     return 0.5 * (centrelineTangent(fs, cl, I, sI(zeta)) * dI +
@@ -123,6 +130,81 @@ struct ElementSides {
   std::uint8_t flags;
 };
 
+// The zeta where the intermediate geometry crosses the plane through the element end x_f(s)
+// normal to the mean tangent there: the root of F(zeta) = (x_int(zeta) - x_f(s)) . t_hat, with
+// t_hat = t_int at `guess` (the zone's linear map of s) built from f's node tangent (the mean of
+// its elements' one-sided tangents: F is continuous where t_int has a kink). The eq. 8 sections
+// there are at s on f up to the kink. Within `window` of the guess (clamped to [0, 1]): the
+// window scanned in 8 steps, the sign change nearest the guess refined by the Illinois method;
+// the guess itself when F keeps its sign.
+double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, double window) {
+  const Vec3 x = centrelineAt(g.fs, g.cl, f, s).x;
+  const bool onI = f == g.I;
+  const Vec3 tHat = 0.5 * (centrelineTangent(g.fs, g.cl, f, s) * (onI ? g.dI : g.dJ) +
+                           (onI ? centrelineTangent(g.fs, g.cl, g.J, g.sJ(guess)) * g.dJ
+                                : centrelineTangent(g.fs, g.cl, g.I, g.sI(guess)) * g.dI));
+  auto F = [&](double z) { return (g.position(z) - x).dot(tHat); };
+  const double lo = std::max(0.0, guess - window), hi = std::min(1.0, guess + window);
+  double a = 0, b = 0, fa = 0, fb = 0, nearest = 2;
+  double z0 = lo, f0 = F(lo);
+  for (int k = 1; k <= 8; ++k) {
+    const double z1 = lo + (hi - lo) * k / 8, f1 = F(z1);
+    const double distance = std::abs(0.5 * (z0 + z1) - guess);
+    if ((f0 > 0) != (f1 > 0) && distance < nearest) a = z0, b = z1, fa = f0, fb = f1, nearest = distance;
+    z0 = z1, f0 = f1;
+  }
+  if (nearest > 1) return guess;
+  int side = 0;
+  for (int it = 0; it < 60 && b - a > 1e-15; ++it) {
+    const double c = (a * fb - b * fa) / (fb - fa), fc = F(c);
+    if ((fc > 0) == (fb > 0)) {
+      b = c, fb = fc;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    } else {
+      a = c, fa = fc;
+      if (side == 1) fb *= 0.5;
+      side = 1;
+    }
+    if (fc == 0) return c;
+  }
+  return 0.5 * (a + b);
+}
+
+// The contact elements of a zone: visit(zeta, length) in increasing zeta. floor(2 L_int / h_min)
+// (eq. 6) decides between a point contact (< 2: one element at zeta = 1/2 carrying L_int) and a
+// line contact. A line contact is cut where the eq. 8 sections cross the element ends of either
+// fibre (sectionAbscissa, within one element's span of the zone's linear map; a cut within h_min / 10 of arc length of the previous one kept or of the
+// zone's end is dropped, so no sliver piece remains), and each piece [a, b] carries its two
+// Gauss points, each of length (b - a) / 2 |t_int(zeta)|. A piece's sections then lie within one
+// element of I and one of J, and a uniform line pressure p gives both fibres the nodal forces of
+// the consistent line load, int N_a p ds, exactly where the sections move affinely with zeta
+// (two-point Gauss is exact for N_a p, p linear, on quadratic elements).
+template <class Visit>
+void forEachElementAbscissa(const Intermediate& g, double L, Visit visit) {
+  const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
+  const double h = std::min(hI, hJ);
+  if (std::floor(2 * L / h) < 2) {
+    visit(0.5, L);
+    return;
+  }
+  std::vector<double> cuts;
+  for (auto [f, s1, d, hf] : {std::tuple{g.I, g.sI1, g.dI, hI}, std::tuple{g.J, g.sJ1, g.dJ, hJ}})
+    for (Breakpoints b(s1, d, hf); b.peek() < 1; b.advance())
+      cuts.push_back(sectionAbscissa(g, f, double(b.n) * hf, b.peek(), hf / std::abs(d)));
+  std::sort(cuts.begin(), cuts.end());
+  const double sliver = 0.1 * h / std::max(std::abs(g.dI), std::abs(g.dJ));  // in zeta
+  const double r = 0.5 / std::sqrt(3.0);
+  auto piece = [&](double a, double b) {
+    const double mid = 0.5 * (a + b), w = b - a;
+    for (const double z : {mid - r * w, mid + r * w}) visit(z, 0.5 * w * g.tangent(z).norm());
+  };
+  double a = 0;
+  for (const double b : cuts)
+    if (b - a >= sliver && 1 - b >= sliver) piece(a, b), a = b;
+  piece(a, 1);
+}
+
 // The sections of I and J at zeta (eq. 8 and its degenerate cases); `sep` is the self-contact
 // separation (I == J).
 ElementSides sectionsAt(const Intermediate& g, double zeta, double delta, double sep) {
@@ -164,9 +246,17 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
   const double delta = proximityDistance(p, g.I, g.J);
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
-  for (Index k = 0; k < nc; ++k) {
-    const Index e = first + k;
-    const double zeta = nc == 1 ? 0.5 : double(k) / (nc - 1);
+  double total = 0;
+  Index e = first;
+  forEachElementAbscissa(g, zones.intermediateLength[z], [&](double zeta, double length) {
+    el.zeta[e] = zeta;
+    el.length[e++] = length;
+    total += length;
+  });
+  for (e = first; e < first + nc; ++e)
+    el.weight[e] = total > 0 ? el.length[e] * double(nc) / total : 1.0;
+  for (e = first; e < first + nc; ++e) {
+    const double zeta = el.zeta[e];
     const ElementSides sides = sectionsAt(g, zeta, delta, sep);
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
@@ -187,7 +277,6 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
       }
     }
     el.zone[e] = z;
-    el.zeta[e] = zeta;
     el.fibreI[e] = g.I;
     el.sI[e] = sides.sI;
     el.xiI1[e] = xiI[0];
@@ -223,9 +312,10 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
     for (Index z = r.begin(); z != r.end(); ++z) {
       const Intermediate g = geometry(z);
       const double L = intermediateLength(g);
-      const double hMin = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
       zones.intermediateLength[z] = L;
-      zones.elementCount[z] = std::max<Index>(1, Index(std::floor(2 * L / hMin)));
+      Index count = 0;
+      forEachElementAbscissa(g, L, [&](double, double) { ++count; });
+      zones.elementCount[z] = count;
     }
   });
   Index total = 0;

@@ -3,7 +3,7 @@
 // Reads  FibreStore, the state q (x0, g1, g2), ContactParams, CentrelineStore, ZoneStore
 //        (fibres, intervals), the cancel flag (per chunk of zones).
 // Writes ZoneStore::intermediateLength, firstElement, elementCount; ContactElementStore (zone,
-//        zeta, particles, normal, gap, theta, crossWeight (eqs. 10-11, systems/contact_normals.h),
+//        zeta, length, weight, particles, normal, gap, theta, crossWeight (eqs. 10-11, systems/contact_normals.h),
 //        fallback bits; every other column is sized and left to the systems after it).
 // Threading: parallel over zones, twice: lengths, then (after a prefix sum of the counts) the
 //        elements, each zone writing its own range. Independent of the thread count.
@@ -12,8 +12,16 @@
 //   x_int(zeta) = (x_I(sI(zeta)) + x_J(sJ(zeta))) / 2,  t_int = dx_int / dzeta          (eq. 5)
 //   L_int = int_0^1 |t_int| dzeta: two-point Gauss on each piece between the element ends of I
 //   and J (t_int is linear in zeta on a piece), 0 for a zero-length zone;
-//   Nc = max(1, floor(2 L_int / h_min)), h_min = min(h_I, h_J)                           (eq. 6)
-//   zeta_k = (k - 1) / (Nc - 1), k = 1..Nc; zeta = 1/2 when Nc = 1                        (eq. 7)
+//   point or line: floor(2 L_int / h_min) < 2 (eq. 6), h_min = min(h_I, h_J): one element at
+//     zeta = 1/2 of length L_int. Else a line contact, whose elements are weighted (eq. 7
+//     replaced): the zone is cut at the element ends of both fibres (a cut within h_min / 10 of
+//     arc length of the last kept cut or of the zone's end is dropped), each piece [a, b]
+//     carries the two Gauss points zeta = (a + b) / 2 -+ (b - a) / (2 sqrt 3), each of length
+//     l_k = (b - a) / 2 |t_int(zeta_k)| (mm) and weight w_k = l_k Nc / sum l (mean 1), which
+//     scales the zone's penalty on it. A uniform line pressure p then loads the nodes of both
+//     fibres with the consistent line load int N_a p ds exactly: a uniform line load is
+//     carried as a uniform line force at any p_max (equal point forces at the eq. 7 spacing gave
+//     +-5%, Gauss points of one fibre only +-9% on the other when their grids are offset).
 //   sections: (x(s) - x_int(zeta_k)) . t_int(zeta_k) = 0 on I and on J                   (eq. 8)
 //     by Newton from sI(zeta_k) (resp. sJ) within the zone interval widened by Delta_prox
 //     (clamped to the fibre), bisection as safeguard;

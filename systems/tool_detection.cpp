@@ -13,18 +13,23 @@ namespace fibra {
 namespace {
 
 // A contact element for the particle (element, z, xi): its normal is the surface normal at the
-// closest point, its tool point the surface point under it.
+// closest point, its tool point the surface point under it. A lateral particle (length > 0) has
+// weight 1; an end-face particle (length 0) |t . N|, t the unit tangent: the face bears fully on
+// a tool it faces and not at all on one the fibre lies along, where its rim's lowest point would
+// otherwise add a point force to the line contact the lateral particles already carry.
 void addParticle(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
-                 const Section& sec, const Eigen::Vector2d& xi, const RigidMotion& m,
-                 ToolContactStore& c) {
+                 double length, const Section& sec, const Eigen::Vector2d& xi,
+                 const RigidMotion& m, ToolContactStore& c) {
   const Index f = fs.elementFibre[e];
   const Vec3 x = sec.x0 + xi(0) * sec.g1 + xi(1) * sec.g2;
   const SurfacePoint sp = closestSurfacePoint(tools, tool, m, x);
+  c.weight.push_back(length > 0 ? 1.0 : std::abs(sec.dx0ds.normalized().dot(sp.normal)));
   const RigidMotion inverse{m.R.transpose(), m.centre, -m.R.transpose() * m.shift};
   c.tool.push_back(tool);
   c.zone.push_back(tool * fs.fibres() + f);
   c.element.push_back(e);
   c.z.push_back(z);
+  c.length.push_back(length);
   c.xi1.push_back(xi(0));
   c.xi2.push_back(xi(1));
   c.side.push_back(particleWeights(fs, e, z, xi(0), xi(1)));
@@ -51,14 +56,17 @@ std::optional<std::pair<Section, SurfacePoint>> sectionNearTool(const FibreStore
   return std::pair{sec, centre};
 }
 
-// Lateral contact at (element, z): the outline point facing the tool (direction -N).
+// Lateral contact at (element, z), one of `points` Gauss points of the element: the outline
+// point facing the tool (direction -N), carrying h / points of the centreline (times the stretch).
 void addLateral(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
-                const RigidMotion& m, double proximity, ToolContactStore& c) {
+                int points, const RigidMotion& m, double proximity, ToolContactStore& c) {
   const auto near = sectionNearTool(fs, tools, tool, e, z, m, proximity);
   if (!near) return;
   const auto& [sec, centre] = *near;
-  const double R = fs.radius[fs.elementFibre[e]];
-  addParticle(fs, tools, tool, e, z, sec, outlinePoint(sec.g1, sec.g2, R, -centre.normal), m, c);
+  const Index f = fs.elementFibre[e];
+  const double R = fs.radius[f], length = elementLength(fs, f) / points * sec.dx0ds.norm();
+  addParticle(fs, tools, tool, e, z, length, sec, outlinePoint(sec.g1, sec.g2, R, -centre.normal),
+              m, c);
 }
 
 // The flat end face of a fibre at (element, z = +-1): its centre and kEndRim points of its rim
@@ -70,10 +78,10 @@ void addEndFace(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
   if (!near) return;
   const Section& sec = near->first;
   const double R = fs.radius[fs.elementFibre[e]];
-  addParticle(fs, tools, tool, e, z, sec, Eigen::Vector2d::Zero(), m, c);
+  addParticle(fs, tools, tool, e, z, 0.0, sec, Eigen::Vector2d::Zero(), m, c);
   for (int k = 0; k < kEndRim; ++k) {
     const double phi = 2 * std::numbers::pi * k / kEndRim;
-    addParticle(fs, tools, tool, e, z, sec, R * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
+    addParticle(fs, tools, tool, e, z, 0.0, sec, R * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
   }
 }
 
@@ -86,9 +94,9 @@ void detectToolContacts(const FibreStore& fs, const ToolStore& tools, const Cont
     const RigidMotion m = toolMotion(tools, t, input.time);
     for (Index e = 0; e < fs.elements(); ++e) {
       const int order = fs.order[fs.elementFibre[e]];
-      const double zs[2] = {-0.5, 0.5};
+      const double zs[2] = {-1 / std::sqrt(3.0), 1 / std::sqrt(3.0)};
       for (int k = 0; k < order; ++k)
-        addLateral(fs, tools, t, e, order == 2 ? zs[k] : 0.0, m, params.toolProximity, c);
+        addLateral(fs, tools, t, e, order == 2 ? zs[k] : 0.0, order, m, params.toolProximity, c);
     }
     for (Index f = 0; f < fs.fibres(); ++f) {
       const Index first = fs.firstElement[f], last = first + fs.elementCount[f] - 1;

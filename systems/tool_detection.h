@@ -4,8 +4,9 @@
 // Reads  FibreStore (q), ToolStore, ContactParams (tool proximity), IterationInput (time).
 // Writes ToolContactStore (overwritten; the friction reference is left to
 //        systems/friction_reference.h).
-// Along every fibre element, at the contact test locations (2 per quadratic element, at
-// z = -1/2 and 1/2; 1 per linear, at z = 0), a contact element is made when the centreline is
+// Along every fibre element, at its Gauss points (2 per quadratic element, z = -+1/sqrt(3); 1 per
+// linear, z = 0), each carrying h / points of the centreline, so that a uniform line pressure
+// gives the nodes the consistent line load exactly), a contact element is made when the centreline is
 // within R + Delta of the surface (Delta: the scene's proximity distance; by default
 // max(R, h/2), h the element length, so that a fibre approaching the tool has elements before it
 // arrives); its particle is the outline point facing the tool (paper Fig. 4 with the direction

@@ -29,6 +29,7 @@ struct Zone {
 };
 
 struct Element {
+  double zeta, length;  // abscissa on the intermediate geometry, share of it (mm)
   double sI, sJ, xiI[2], xiJ[2];
   Vec3 normal;
   double gap, theta;
@@ -186,15 +187,84 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   }
   const double hMin = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
   const double ratio = 2 * L / hMin;
-  ambiguousCount = std::max(1.0, std::floor(ratio * (1 - 1e-6))) != std::max(1.0, std::floor(ratio * (1 + 1e-6)));
-  const int nc = std::max(1, int(std::floor(ratio)));
+  ambiguousCount = std::floor(ratio * (1 - 1e-6)) < 2 && std::floor(ratio * (1 + 1e-6)) >= 2;
+  // Placement (docs/CONTACT.md 1.4): a point contact, one element at 1/2 carrying L; else the
+  // zone cut at the element ends of I and J, a cut within h_min / 10 (of arc length on the
+  // fibre with the longer interval) of the last kept cut or of the zone's end dropped, two Gauss
+  // points per piece.
+  std::vector<std::pair<double, double>> placed;  // (zeta, length)
+  if (std::floor(ratio) < 2) {
+    placed.push_back({0.5, L});
+  } else {
+    const double span = std::max(std::abs(dI), std::abs(dJ));
+    auto tInt = [&](double zeta) {
+      return Vec3(0.5 * (at(fs, q, I, (1 - zeta) * z.sI1 + zeta * z.sI2).dx0ds * dI +
+                         at(fs, q, J, (1 - zeta) * z.sJ1 + zeta * z.sJ2).dx0ds * dJ));
+    };
+    // The cut of an element end x_f(s): where x_int crosses the plane through it normal to
+    // t_int at the linear map's guess with f's node tangent (the mean of both sides'), within
+    // `window` of the guess (clamped to [0, 1]): every sign change (256 steps, bisected), the
+    // one nearest the guess; the guess when there is none. Ambiguous when the pipeline's coarser
+    // scan (8 steps) might pick another: a second sign change within 2 of its steps of the
+    // chosen one, or not farther than one of its steps more from the guess.
+    auto cutAt = [&](Index f, double s, double guess, double window) {
+      const Vec3 x = at(fs, q, f, s).x0;
+      const Index other = f == I ? J : I;
+      const double dF = f == I ? dI : dJ, dO = f == I ? dJ : dI;
+      const double sO = f == I ? (1 - guess) * z.sJ1 + guess * z.sJ2 : (1 - guess) * z.sI1 + guess * z.sI2;
+      const Vec3 tHat = 0.5 * (at(fs, q, f, s).dx0ds * dF + at(fs, q, other, sO).dx0ds * dO);
+      auto F = [&](double u) { return (xInt(u) - x).dot(tHat); };
+      const double lo = std::max(0.0, guess - window), hi = std::min(1.0, guess + window);
+      const double coarse = (hi - lo) / 8;
+      std::vector<double> roots;
+      for (int i = 0; i < 256; ++i) {
+        double a = lo + (hi - lo) * i / 256.0, b = lo + (hi - lo) * (i + 1) / 256.0, fa = F(a);
+        if ((fa > 0) == (F(b) > 0)) continue;
+        for (int k = 0; k < 60; ++k) {
+          const double m = 0.5 * (a + b);
+          if ((F(m) > 0) == (fa > 0)) a = m; else b = m;
+        }
+        roots.push_back(a);
+      }
+      if (roots.empty()) return guess;
+      std::sort(roots.begin(), roots.end(),
+                [&](double u, double v) { return std::abs(u - guess) < std::abs(v - guess); });
+      for (std::size_t k = 1; k < roots.size(); ++k)
+        if (std::abs(roots[k] - roots[0]) < 2 * coarse ||
+            std::abs(roots[k] - guess) - std::abs(roots[0] - guess) < coarse)
+          ambiguousCount = true;
+      return roots[0];
+    };
+    std::vector<double> all;
+    for (auto [f, s1, d] : {std::tuple{I, z.sI1, dI}, std::tuple{J, z.sJ1, dJ}}) {
+      const double h = fs.length[f] / fs.elementCount[f];
+      for (Index n = 1; n < fs.elementCount[f] && d != 0; ++n)
+        if (const double zeta = (n * h - s1) / d; zeta > 0 && zeta < 1)
+          all.push_back(cutAt(f, n * h, zeta, h / std::abs(d)));
+    }
+    std::sort(all.begin(), all.end());
+    std::vector<double> cuts{0};
+    for (const double c : all) {
+      const double fromLast = (c - cuts.back()) * span / hMin, toEnd = (1 - c) * span / hMin;
+      if (std::abs(fromLast - 0.1) < 1e-9 || std::abs(toEnd - 0.1) < 1e-9) ambiguousCount = true;
+      if (fromLast >= 0.1 && toEnd >= 0.1) cuts.push_back(c);
+    }
+    cuts.push_back(1);
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+      const double a = cuts[c], b = cuts[c + 1];
+      for (const double g : {-1.0, 1.0}) {
+        const double zeta = 0.5 * (a + b) + g * (b - a) / (2 * std::sqrt(3.0));
+        placed.push_back({zeta, 0.5 * (b - a) * tInt(zeta).norm()});
+      }
+    }
+  }
   std::vector<Element> out;
-  for (int k = 0; k < nc; ++k) {
-    const double zeta = nc == 1 ? 0.5 : double(k) / (nc - 1);
+  for (auto [zeta, length] : placed) {
     const double sIz = (1 - zeta) * z.sI1 + zeta * z.sI2, sJz = (1 - zeta) * z.sJ1 + zeta * z.sJ2;
     const Section cI = at(fs, q, I, sIz), cJ = at(fs, q, J, sJz);
     const Vec3 x = 0.5 * (cI.x0 + cJ.x0), tInt = 0.5 * (cI.dx0ds * dI + cJ.dx0ds * dJ);
     Element e{};
+    e.zeta = zeta, e.length = length;
     Vec3 t;
     if (tInt.norm() > 1e-9 * 0.5 * (std::abs(dI) + std::abs(dJ))) {
       t = tInt.normalized();

@@ -32,6 +32,12 @@ void compareElements(const FibreStore& fs, const Eigen::VectorXd& q, const Conta
     CAPTURE(z);
     CAPTURE(k);
     CHECK(el.zone[e] == z);
+    CHECK(std::abs(el.zeta[e] - r.zeta) <= 1e-10);
+    // A point contact carries L_int, which the pipeline integrates by two-point Gauss on each
+    // piece (|t_int| is the root of a quadratic there: 1.7% off on a curved crossing whose t_int
+    // nearly cancels), the reference by Richardson-extrapolated chords; a line element's length
+    // is the same Gauss weight in both.
+    CHECK(std::abs(el.length[e] - r.length) <= (ref.size() == 1 ? 0.02 : 1e-9) * (1e-3 + r.length));
     CHECK((el.fallback[e] & (7 | kEndFaceI | kEndFaceJ)) == r.fallback);
     cov.endFaces += (r.fallback & (kEndFaceI | kEndFaceJ)) != 0;
     CHECK(std::abs(el.sI[e] - r.sI) <= 1e-8);
