@@ -65,6 +65,24 @@ struct ContactReport {
   int candidatePairs = 0;      // candidate element pairs of the last detection
 };
 
+// Energy balance since t = 0, N mm (systems/energy_balance.h): the strain energy gained equals the
+// work of every force on the fibres, up to the trapezoidal rule's error (`error`), which is of
+// second order in the increment. Frictionless contact over a load cycle that returns: the normal
+// forces' net work ~0 (they store and give back penalty energy, and do no spurious work).
+struct EnergyBalance {
+  double strain = 0;         // U(q) - U(q at t = 0)
+  double external = 0;       // work of the dead loads (forces, moments, line forces)
+  double supports = 0;       // work of the held DOFs' supports (prescribed displacements)
+  double contactNormal = 0;  // work of the fibre-fibre normal contact forces
+  double friction = 0;       // work of the friction forces, fibre-fibre and tools (-: dissipated
+                             // or stored in reversible slip)
+  double tools = 0;          // work of the tools' normal forces
+  double stabilisation = 0;  // work of the stabilisation springs and continuation damping (<= 0)
+  double error() const {
+    return strain - (external + supports + contactNormal + friction + tools + stabilisation);
+  }
+};
+
 struct StepReport {
   StepStatus status = StepStatus::Finished;
   int step = -1;            // scene step index
@@ -81,6 +99,7 @@ struct StepReport {
   std::vector<NewtonRecord> history;  // the accepted attempt's iterations
   StepTimings timings;
   ContactReport contact;    // when the scene has contact or tools
+  EnergyBalance energy;     // since t = 0, at the state reached
   std::string message;      // why a cutback or failure happened
 };
 

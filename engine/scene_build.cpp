@@ -5,8 +5,10 @@
 #include "engine/contact_setup.h"
 #include "engine/fibre_builder.h"
 #include "engine/world_state.h"
+#include "systems/beam_evaluation.h"
 #include "systems/beam_section.h"
 #include "systems/boundary.h"
+#include "systems/energy_balance.h"
 #include "systems/sparse_pattern.h"
 
 #include <algorithm>
@@ -208,6 +210,9 @@ void buildWorld(WorldState& w) {
   applyConstraints(w.fibres, w.constraints, w.groups, 0.0, w.fibres.q);
   assembleResidual(w, 0.0);
   w.converged = {w.fibres.q, w.system.r, w.system.fext};
+  energyForces(w.fibres, w.constraints, w.system, hasContact(w) ? &w.committed : nullptr,
+               w.energy.last);
+  w.energy.strainAtStart = beamEnergy(w.fibres, w.beams, w.fibres.q);
 }
 
 }  // namespace fibra

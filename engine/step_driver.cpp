@@ -14,7 +14,9 @@
 #include "core/format.h"
 #include "engine/contact_loops.h"
 #include "engine/world_state.h"
+#include "systems/beam_evaluation.h"
 #include "systems/boundary.h"
+#include "systems/energy_balance.h"
 #include "systems/newton.h"
 #include "systems/stabilisation.h"
 
@@ -64,9 +66,24 @@ void beginAttempt(WorldState& w, const StepDef& st, double size) {
   w.stabilisation.viscous = st.damping / size;
 }
 
+// The work of every force over the attempt that converged (systems/energy_balance.h), before
+// its start state is overwritten.
+void balanceEnergy(WorldState& w) {
+  EnergyForces now;
+  energyForces(w.fibres, w.constraints, w.system, hasContact(w) ? &w.committed : nullptr, now);
+  Eigen::VectorXd springs;
+  if (w.stabilisation.active)
+    springs = springForce(w.fibres, w.stabilisation) + viscousForce(w.fibres, w.stabilisation);
+  const double strain = beamEnergy(w.fibres, w.beams, w.fibres.q) - w.energy.strainAtStart;
+  accumulateEnergy(w.energy.last, now, w.converged.q, w.fibres.q, springs, strain,
+                   w.energy.balance);
+  w.energy.last = std::move(now);
+}
+
 // The attempt converged: its state becomes the last converged one.
 void commit(WorldState& w, double time) {
   if (hasContact(w)) std::swap(w.committed, w.trial);
+  balanceEnergy(w);
   w.converged.q = w.fibres.q;
   w.converged.r = w.system.r;
   w.converged.fext = w.system.fext;
@@ -142,6 +159,7 @@ StepReport advance(WorldState& w) {
     rep.time = w.time;
     rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
     rep.timings.total = elapsed();
+    rep.energy = w.energy.balance;
     return rep;
   };
   const double nominal = (st.endTime - tStart) / st.increments;
@@ -184,6 +202,7 @@ StepReport advance(WorldState& w) {
   rep.time = t1;
   rep.loadFactor = (t1 - tStart) / (st.endTime - tStart);
   rep.timings.total = elapsed();
+  rep.energy = w.energy.balance;
   return rep;
 }
 

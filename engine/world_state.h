@@ -10,6 +10,7 @@
 #include "components/contact_cliques.h"
 #include "components/contact_params.h"
 #include "components/contact_state.h"
+#include "components/energy.h"
 #include "components/fibres.h"
 #include "components/iteration.h"
 #include "components/linear_system.h"
@@ -58,6 +59,7 @@ struct WorldState {
   struct {
     Eigen::VectorXd q, r, fext;
   } converged;
+  EnergyStore energy;                // forces of the converged state, balance since t = 0
 
   // Solver.
   LinearSolver solver;

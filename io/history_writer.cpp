@@ -108,6 +108,17 @@ HistoryColumns continuationColumns(const World& world) {
           }};
 }
 
+// The energy balance since t = 0 (core/report.h EnergyBalance), N mm.
+HistoryColumns energyColumns() {
+  return {{"energy.strain", "energy.external", "energy.supports", "energy.contact_normal",
+           "energy.friction", "energy.tools", "energy.stabilisation", "energy.error"},
+          [](const World&, const StepReport& r, std::vector<double>& row) {
+            const EnergyBalance& e = r.energy;
+            row.insert(row.end(), {e.strain, e.external, e.supports, e.contactNormal, e.friction,
+                                   e.tools, e.stabilisation, e.error()});
+          }};
+}
+
 HistoryColumns probeColumns(const World& world) {
   HistoryColumns c;
   for (const ProbeDef& p : world.scene().output.probes)
@@ -121,7 +132,8 @@ HistoryColumns probeColumns(const World& world) {
 
 std::vector<HistoryColumns> standardHistoryColumns(const World& world) {
   return {incrementColumns(),    reactionColumns(world),     toolColumns(world),
-          contactColumns(world), continuationColumns(world), probeColumns(world)};
+          contactColumns(world), continuationColumns(world), energyColumns(),
+          probeColumns(world)};
 }
 
 HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns)
