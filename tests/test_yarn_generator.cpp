@@ -288,10 +288,10 @@ TEST_CASE("union groups: one group holds every fibre's start, another pulls ever
   for (Index f = 0; f < 3; ++f) {
     CHECK(x0Of(fibres.q, fibres.firstNode[f]) == x0Of(fibres.qRef, fibres.firstNode[f]));  // held
     const double tip = x0Of(fibres.q, tipOf(f)).x() - 10;
-    CHECK(tip == doctest::Approx(stretch).epsilon(1e-12));  // loaded alike
+    CHECK(std::abs(tip / stretch - 1) < 1e-9);  // loaded alike
   }
   // The reaction of the one boundary condition balances the three loads.
-  CHECK(w.reaction(0).force.x() == doctest::Approx(-0.3).epsilon(1e-6));
+  CHECK(std::abs(w.reaction(0).force.x() / -0.3 - 1) < 1e-9);
 }
 
 TEST_CASE("union groups: a node in several members counts once, unions of unions") {
