@@ -34,7 +34,7 @@ double positive(const Fields& f, const char* key) {
   return v;
 }
 
-int atLeast(const Fields& f, const char* key, int fallback, int min, int max) {
+int integerIn(const Fields& f, const char* key, int fallback, int min, int max) {
   const int v = f.integer(key, fallback);
   if (v < min || v > max)
     bad(f, key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
@@ -56,7 +56,7 @@ YarnPerturbation readPerturbation(const Json& j, const std::string& path, const 
   p.amplitude = f.number("amplitude");
   if (!(p.amplitude >= 0 && std::isfinite(p.amplitude)))
     bad(f, "amplitude", "must be >= 0, got " + num(p.amplitude));
-  p.modes = atLeast(f, "modes", p.modes, 1, 100);
+  p.modes = integerIn(f, "modes", p.modes, 1, 100);
   const double element = y.length / y.elements;
   p.minWavelength = std::max(y.length / 2, 2 * element);
   if (f.has("min_wavelength")) p.minWavelength = positive(f, "min_wavelength");
@@ -84,12 +84,12 @@ YarnDef readYarn(const Json& spec, const std::string& path) {
   y.name = f.string("name");
   checkName(f, y.name);
   y.material = f.string("material");
-  y.fibres = atLeast(f, "fibres", 0, 1, 100000);
+  y.fibres = integerIn(f, "fibres", 0, 1, 100000);
   y.fibreRadius = positive(f, "fibre_radius");
   y.gap = f.number("gap", y.gap);
   if (!(y.gap >= 0 && std::isfinite(y.gap))) bad(f, "gap", "must be >= 0, got " + num(y.gap));
   y.length = positive(f, "length");
-  y.elements = atLeast(f, "elements", 0, 1, 100000);
+  y.elements = integerIn(f, "elements", 0, 1, 100000);
   y.order = f.integer("order", y.order);
   if (y.order != 1 && y.order != 2)
     bad(f, "order", "must be 1 or 2, got " + std::to_string(y.order));
