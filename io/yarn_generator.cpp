@@ -44,10 +44,12 @@ int integerIn(const Fields& f, const char* key, int fallback, int min, int max) 
 
 void checkName(const Fields& f, const std::string& name) {
   if (name.empty()) bad(f, "name", "must not be empty");
-  for (char c : name)
-    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
-      bad(f, "name", "'" + json_reader::shown(name) + "' contains '" + std::string(1, c) +
-                         "'; names use letters, digits, '_', '-' and '.'");
+  for (char c : name) {
+    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') continue;
+    std::string what(1, '\'');
+    what.append(json_reader::shown(name)).append("' contains '").push_back(c);
+    bad(f, "name", what.append("'; names use letters, digits, '_', '-' and '.'"));
+  }
 }
 
 YarnPerturbation readPerturbation(const Json& j, const std::string& path, const YarnDef& y) {

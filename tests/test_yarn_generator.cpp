@@ -332,7 +332,7 @@ TEST_CASE("union groups: bad members are named by their field") {
 
 TEST_CASE("union groups: a SceneDef built in code may not mix the two forms") {
   SceneDef s = load(threeBeams());
-  s.groups[0].fibre = "a";
+  s.groups[0].fibre = s.fibres[0].name;
   s.groups[0].nodes = {0};
   CHECK(errorOf([&] { validateScene(s); }) ==
         "groups[0]: give either 'union' or 'fibre' and 'nodes', not both");
