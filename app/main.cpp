@@ -4,6 +4,7 @@
 //   fibra run SCENE.json --out DIR [options]   solve (fibra --help lists the options)
 //   fibra check SCENE.json                     validate, print the problem's size, no solve
 //   fibra describe SCENE.json                  the stages of an iteration, as Markdown
+//   fibra expand SCENE.json [--out FILE]       the scene with its generators expanded
 //   fibra --version
 //
 // Order of work: the scene is loaded, validated and the World built before anything is
@@ -60,6 +61,7 @@ const char* const kUsage =
     "                 [--quiet | --verbose]\n"
     "       fibra check SCENE.json\n"
     "       fibra describe SCENE.json\n"
+    "       fibra expand SCENE.json [--out FILE]\n"
     "       fibra --version | --help\n"
     "\n"
     "run: solves the scene (format: docs/SCENE.md) and writes into DIR (created if needed; the\n"
@@ -71,6 +73,8 @@ const char* const kUsage =
     "check: validates the scene and prints the problem's size and contact parameters.\n"
     "describe: prints the stages of an iteration for the scene (Markdown): every system, the\n"
     "stores it reads and writes, the systems it waits for (docs/ARCHITECTURE.md).\n"
+    "expand: writes the scene with its generators expanded as plain JSON (to FILE, else to\n"
+    "stdout); it loads to the same scene (docs/SCENE.md, Generators).\n"
     "Options of run:\n"
     "  --out DIR         output directory (required)\n"
     "  --threads N       worker threads (default: all cores)\n"
@@ -297,6 +301,30 @@ int inspect(int argc, char** argv, bool describe) {
   return kSolved;
 }
 
+// fibra expand SCENE.json [--out FILE]: the plain scene, checked, on stdout or in FILE
+// (written as FILE.part, then renamed).
+int expand(int argc, char** argv) {
+  const bool toFile = argc == 5 && std::string(argv[3]) == "--out";
+  if (!(argc == 3 || toFile) || std::string(argv[2]).starts_with("-"))
+    throw UsageError("expand: expected a scene file and optionally --out FILE");
+  std::string text;
+  try {
+    text = expandScene(argv[2]);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "fibra: error: %s\n", e.what());
+    return kBadInput;
+  }
+  if (!toFile) return std::fputs(text.c_str(), stdout) >= 0 ? kSolved : kFailed;
+  const std::string out = argv[4], part = out + ".part";
+  if (!(std::ofstream(part, std::ios::binary) << text)) {
+    std::fprintf(stderr, "fibra: error: cannot write '%s'\n", part.c_str());
+    fs::remove(part);
+    return kFailed;
+  }
+  fs::rename(part, out);
+  return kSolved;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -312,6 +340,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "describe" || command == "check")
       return inspect(argc, argv, command == "describe");
+    if (command == "expand") return expand(argc, argv);
     if (command != "run")
       throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
     return run(parseRun(argc, argv));

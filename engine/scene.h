@@ -59,10 +59,14 @@ struct FibreDef {
 };
 
 // A named set of nodes. Every fibre F also has the groups "F.start", "F.end" and "F.all".
+// Either nodes of one fibre (`fibre` and `nodes`) or, when `members` is not empty, the union of
+// other groups (automatic ones or groups listed before this one; a node in several members
+// counts once), which may span several fibres.
 struct GroupDef {
   std::string name;
   std::string fibre;
-  std::vector<int> nodes;  // node indices within the fibre, 0-based
+  std::vector<int> nodes;             // node indices within the fibre, 0-based
+  std::vector<std::string> members;   // union form: names of other groups
 };
 
 // Held DOFs of a group's nodes. Targets follow the reference and the motion:

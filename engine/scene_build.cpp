@@ -54,6 +54,27 @@ void addGroup(GroupStore& g, const std::string& name, Index firstNode, const std
   for (Index n : nodes) g.members.push_back(firstNode + n);
 }
 
+// A union group: the global nodes of its members (groups already in the store), each once.
+void addUnion(GroupStore& g, const GroupDef& def, const std::string& path) {
+  std::map<std::string, Index> known;
+  for (Index i = 0; i < g.size(); ++i) known.emplace(g.name[i], i);
+  std::vector<Index> nodes;
+  std::vector<bool> seen;
+  for (size_t k = 0; k < def.members.size(); ++k) {
+    const auto m = known.find(def.members[k]);
+    if (m == known.end())
+      throw SceneError(path + ".union[" + std::to_string(k) + "]: unknown group '" +
+                       def.members[k] + "'");
+    for (Index j = g.first[m->second]; j < g.first[m->second] + g.count[m->second]; ++j) {
+      const Index node = g.members[j];
+      if (node >= Index(seen.size())) seen.resize(node + 1, false);
+      if (!seen[node]) nodes.push_back(node);
+      seen[node] = true;
+    }
+  }
+  addGroup(g, def.name, 0, nodes);
+}
+
 void buildGroups(WorldState& w) {
   const FibreStore& fs = w.fibres;
   for (Index f = 0; f < fs.fibres(); ++f) {
@@ -66,6 +87,10 @@ void buildGroups(WorldState& w) {
   const auto fibres = indexByName(w.scene.fibres);
   for (size_t i = 0; i < w.scene.groups.size(); ++i) {
     const GroupDef& g = w.scene.groups[i];
+    if (!g.members.empty()) {
+      addUnion(w.groups, g, at("groups", i));
+      continue;
+    }
     const auto f = fibres.find(g.fibre);
     if (f == fibres.end())
       throw SceneError(at("groups", i) + ".fibre: unknown fibre '" + g.fibre + "'");

@@ -198,6 +198,41 @@ void Fields::badChoice(const char* key, const std::string& got,
   fail(path(key), what);
 }
 
+namespace {
+
+void dumpInto(const Json& j, int indent, std::string& out) {
+  const bool flat = j.is_primitive() ||
+                    std::none_of(j.begin(), j.end(), [](const Json& e) { return e.is_structured(); });
+  if (j.is_primitive() || j.empty()) {
+    out += j.dump();
+    return;
+  }
+  if (j.is_array() && flat) {
+    out += '[';
+    for (size_t i = 0; i < j.size(); ++i) out += (i ? ", " : "") + j[i].dump();
+    out += ']';
+    return;
+  }
+  const std::string pad(size_t(indent + 2), ' ');
+  out += j.is_array() ? "[\n" : "{\n";
+  bool first = true;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    out += (first ? "" : ",\n") + pad;
+    if (j.is_object()) out += Json(it.key()).dump() + ": ";
+    dumpInto(*it, indent + 2, out);
+    first = false;
+  }
+  out += "\n" + std::string(size_t(indent), ' ') + (j.is_array() ? "]" : "}");
+}
+
+}  // namespace
+
+std::string readableDump(const Json& json) {
+  std::string out;
+  dumpInto(json, 0, out);
+  return out + "\n";
+}
+
 double asNumber(const Json& j, const std::string& path) {
   if (!j.is_number()) fail(path, typeMismatch("a number", j));
   return j.get<double>();

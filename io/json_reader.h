@@ -93,6 +93,11 @@ class Fields {
   std::string path_;
 };
 
+// JSON text for people: objects and arrays of objects or arrays one entry a line (2-space
+// indent), arrays of numbers, strings and booleans on one line; numbers as nlohmann writes them
+// (the shortest decimal that reads back to the same double).
+std::string readableDump(const Json& json);
+
 // Typed readers of a value at `path`.
 double asNumber(const Json& j, const std::string& path);
 int asInteger(const Json& j, const std::string& path);

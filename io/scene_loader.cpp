@@ -2,6 +2,7 @@
 // conditions, loads, tables, tools and contact are in scene_loader_motion.cpp.
 #include "io/scene_loader.h"
 
+#include "io/generators.h"
 #include "io/json_reader.h"
 #include "io/scene_sections.h"
 #include "io/scene_validate.h"
@@ -96,10 +97,20 @@ FibreDef readFibre(const Json& j, const std::string& path) {
   return d;
 }
 
+// A group: nodes of one fibre ("fibre" and "nodes") or a union of other groups ("union").
 GroupDef readGroup(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"name", "fibre", "nodes"});
+  const bool isUnion = Fields(j, path, {"name", "fibre", "nodes", "union"}).has("union");
+  const Fields f = isUnion ? Fields(j, path, {"name", "union"}, "a union group")
+                           : Fields(j, path, {"name", "fibre", "nodes"});
   GroupDef g;
   g.name = f.string("name");
+  if (isUnion) {
+    forEachItem(f.at("union"), f.path("union"), [&](const Json& n, const std::string& at) {
+      g.members.push_back(asString(n, at));
+    });
+    if (g.members.empty()) fail(f.path("union"), "must list at least one group");
+    return g;
+  }
   g.fibre = f.string("fibre");
   forEachItem(f.at("nodes"), f.path("nodes"),
               [&](const Json& n, const std::string& at) { g.nodes.push_back(asInteger(n, at)); });
@@ -193,19 +204,25 @@ SceneDef readScene(const Json& root) {
   return s;
 }
 
-}  // namespace
+// The scene text parsed, its generators expanded (io/generators.h), read and checked; errors
+// name the file.
+struct Expanded {
+  Json root;  // the plain scene, generators expanded
+  SceneDef scene;
+};
 
-SceneDef loadSceneFromString(const std::string& text, const std::string& displayName) {
+Expanded expandedScene(const std::string& text, const std::string& displayName) {
   try {
-    const SceneDef scene = readScene(json_reader::parse(text));
-    validateScene(scene);
-    return scene;
+    Expanded out{expandGenerators(json_reader::parse(text)), {}};
+    out.scene = readScene(out.root);
+    validateScene(out.scene);
+    return out;
   } catch (const SceneError& e) {
     throw SceneError(displayName + ": " + e.what());
   }
 }
 
-SceneDef loadScene(const std::string& path) {
+std::string readSceneFile(const std::string& path) {
   if (std::filesystem::is_directory(path))
     throw SceneError(path + ": is a directory, not a scene file");
   std::ifstream in(path, std::ios::binary);
@@ -213,7 +230,25 @@ SceneDef loadScene(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw SceneError(path + ": cannot read the scene file");
-  return loadSceneFromString(text.str(), path);
+  return text.str();
+}
+
+}  // namespace
+
+SceneDef loadSceneFromString(const std::string& text, const std::string& displayName) {
+  return expandedScene(text, displayName).scene;
+}
+
+SceneDef loadScene(const std::string& path) {
+  return loadSceneFromString(readSceneFile(path), path);
+}
+
+std::string expandSceneFromString(const std::string& text, const std::string& displayName) {
+  return json_reader::readableDump(expandedScene(text, displayName).root);
+}
+
+std::string expandScene(const std::string& path) {
+  return expandSceneFromString(readSceneFile(path), path);
 }
 
 }  // namespace fibra

@@ -18,4 +18,10 @@ SceneDef loadScene(const std::string& path);
 // The same for scene text; `displayName` stands for the file name in messages.
 SceneDef loadSceneFromString(const std::string& text, const std::string& displayName);
 
+// The scene file's text with its generators expanded (docs/SCENE.md "Generators"): plain JSON
+// (json_reader::readableDump: keys sorted, numbers that read back exactly, comments dropped) that loads to
+// the same SceneDef. Checked as loadScene checks it; its errors are loadScene's.
+std::string expandScene(const std::string& path);
+std::string expandSceneFromString(const std::string& text, const std::string& displayName);
+
 }  // namespace fibra

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <set>
 #include <sstream>
 
 namespace fibra {
@@ -166,20 +167,77 @@ Names validateFibres(const SceneDef& s, const Names& materials) {
 
 // --- groups ---
 
+// A group's nodes as (fibre, node within the fibre) pairs, each once.
 struct NodeSet {
-  size_t fibre;
-  std::vector<int> nodes;
+  std::vector<std::pair<size_t, int>> nodes;
 };
+using Groups = std::map<std::string, NodeSet>;
+
+NodeSet nodesOfFibre(size_t fibre, const std::vector<int>& nodes) {
+  NodeSet set;
+  for (int n : nodes) set.nodes.emplace_back(fibre, n);
+  return set;
+}
+
+// The nodes of one fibre's group ("fibre" and "nodes").
+NodeSet fibreGroup(const SceneDef& s, const GroupDef& g, const Names& fibres,
+                   const std::string& p) {
+  const size_t f = resolve(fibres, g.fibre, "fibre", p + ".fibre");
+  if (g.nodes.empty()) fail(p + ".nodes", "must list at least one node");
+  std::vector<bool> seen(nodeCount(s.fibres[f]), false);
+  for (size_t k = 0; k < g.nodes.size(); ++k) {
+    const int n = g.nodes[k];
+    if (n < 0 || n >= int(seen.size()))
+      fail(at(p + ".nodes", k), "node " + std::to_string(n) + " outside 0.." +
+                                    std::to_string(seen.size() - 1) + " (fibre '" + g.fibre +
+                                    "')");
+    if (seen[n]) fail(at(p + ".nodes", k), "node " + std::to_string(n) + " listed twice");
+    seen[n] = true;
+  }
+  return nodesOfFibre(f, g.nodes);
+}
+
+[[noreturn]] void unknownMember(const SceneDef& s, const std::string& m, const Groups& groups,
+                                const std::string& mp) {
+  for (size_t later = 0; later < s.groups.size(); ++later)
+    if (s.groups[later].name == m)
+      fail(mp, "group '" + m + "' is listed after this one (" + at("groups", later) +
+                   "); a union names automatic groups and groups listed before it");
+  Names names;
+  for (const auto& [n, unused] : groups) names.emplace(n, 0);
+  resolve(names, m, "group", mp);  // fails
+  fail(mp, "unknown group '" + m + "'");
+}
+
+// The union of the groups `g.members` names: automatic groups and groups listed before; a node
+// in several members counts once.
+NodeSet unionGroup(const SceneDef& s, const GroupDef& g, const Groups& groups,
+                   const std::string& p) {
+  NodeSet set;
+  std::set<std::pair<size_t, int>> seen;
+  std::set<std::string> named;
+  for (size_t k = 0; k < g.members.size(); ++k) {
+    const std::string& m = g.members[k];
+    const std::string mp = at(p + ".union", k);
+    if (m == g.name) fail(mp, "a group cannot be a union of itself");
+    if (!named.insert(m).second) fail(mp, "group '" + m + "' listed twice");
+    const auto member = groups.find(m);
+    if (member == groups.end()) unknownMember(s, m, groups, mp);
+    for (const auto& node : member->second.nodes)
+      if (seen.insert(node).second) set.nodes.push_back(node);
+  }
+  return set;
+}
 
 // Every group by name: the fibres' automatic ones, then the scene's.
-std::map<std::string, NodeSet> validateGroups(const SceneDef& s, const Names& fibres) {
-  std::map<std::string, NodeSet> groups;
+Groups validateGroups(const SceneDef& s, const Names& fibres) {
+  Groups groups;
   for (size_t i = 0; i < s.fibres.size(); ++i) {
     std::vector<int> all(nodeCount(s.fibres[i]));
     for (int n = 0; n < int(all.size()); ++n) all[n] = n;
-    groups[s.fibres[i].name + ".start"] = {i, {0}};
-    groups[s.fibres[i].name + ".end"] = {i, {int(all.size()) - 1}};
-    groups[s.fibres[i].name + ".all"] = {i, all};
+    groups[s.fibres[i].name + ".start"] = nodesOfFibre(i, {0});
+    groups[s.fibres[i].name + ".end"] = nodesOfFibre(i, {int(all.size()) - 1});
+    groups[s.fibres[i].name + ".all"] = nodesOfFibre(i, all);
   }
   Names scene;
   for (size_t i = 0; i < s.groups.size(); ++i) {
@@ -190,20 +248,10 @@ std::map<std::string, NodeSet> validateGroups(const SceneDef& s, const Names& fi
       fail(p + ".name", "duplicate name '" + g.name + "' (also " + at("groups", it->second) + ")");
     if (groups.count(g.name))
       fail(p + ".name", "'" + g.name + "' is an automatic group of fibre '" +
-                            s.fibres[groups[g.name].fibre].name + "'");
-    const size_t f = resolve(fibres, g.fibre, "fibre", p + ".fibre");
-    if (g.nodes.empty()) fail(p + ".nodes", "must list at least one node");
-    std::vector<bool> seen(nodeCount(s.fibres[f]), false);
-    for (size_t k = 0; k < g.nodes.size(); ++k) {
-      const int n = g.nodes[k];
-      if (n < 0 || n >= int(seen.size()))
-        fail(at(p + ".nodes", k), "node " + std::to_string(n) + " outside 0.." +
-                                      std::to_string(seen.size() - 1) + " (fibre '" + g.fibre +
-                                      "')");
-      if (seen[n]) fail(at(p + ".nodes", k), "node " + std::to_string(n) + " listed twice");
-      seen[n] = true;
-    }
-    groups[g.name] = {f, g.nodes};
+                            s.fibres[groups[g.name].nodes[0].first].name + "'");
+    if (!g.members.empty() && (!g.fibre.empty() || !g.nodes.empty()))
+      fail(p, "give either 'union' or 'fibre' and 'nodes', not both");
+    groups[g.name] = g.members.empty() ? fibreGroup(s, g, fibres, p) : unionGroup(s, g, groups, p);
   }
   return groups;
 }
@@ -228,8 +276,6 @@ void validateMotion(const Def& d, const std::string& p) {
   validateTable(d.angle, p + ".rotation.angle");
 }
 
-using Groups = std::map<std::string, NodeSet>;
-
 const NodeSet& resolveGroup(const Groups& groups, const std::string& name,
                             const std::string& path) {
   if (const auto it = groups.find(name); it != groups.end()) return it->second;
@@ -252,27 +298,31 @@ void validateBcs(const SceneDef& s, const Groups& groups) {
         std::none_of(bc.dofs.begin(), bc.dofs.end(), [](bool d) { return d; }))
       fail(p + ".dofs", "a fix must hold at least one DOF");
     validateMotion(bc, p);
-    for (int n : set.nodes)
+    for (const auto& [fibre, n] : set.nodes)
       for (int c = 0; c < kNodeDofs; ++c) {
         if (!holds(bc, c)) continue;
-        int& owner = heldBy[size_t(kNodeDofs) * (firstNode[set.fibre] + n) + c];
+        int& owner = heldBy[size_t(kNodeDofs) * (firstNode[fibre] + n) + c];
         if (owner >= 0)
           fail(p, std::string("holds DOF ") + kDofNames[c] + " of node " + std::to_string(n) +
-                      " of fibre '" + s.fibres[set.fibre].name + "', already held by " +
+                      " of fibre '" + s.fibres[fibre].name + "', already held by " +
                       at("boundary_conditions", owner) + " (group '" + s.bcs[owner].group + "')");
         owner = int(b);
       }
   }
 }
 
-// Whether a group holds every node of at least one element of its fibre.
-bool coversAnElement(const FibreDef& f, const std::vector<int>& nodes) {
-  std::vector<bool> in(nodeCount(f), false);
-  for (int n : nodes) in[n] = true;
-  for (int e = 0; e < f.elements; ++e) {
-    bool all = true;
-    for (int a = 0; a <= f.order; ++a) all = all && in[f.order * e + a];
-    if (all) return true;
+// Whether a group holds every node of at least one element of one of its fibres.
+bool coversAnElement(const SceneDef& s, const NodeSet& set) {
+  const std::set<std::pair<size_t, int>> in(set.nodes.begin(), set.nodes.end());
+  std::set<size_t> fibres;
+  for (const auto& node : set.nodes) fibres.insert(node.first);
+  for (size_t fi : fibres) {
+    const FibreDef& f = s.fibres[fi];
+    for (int e = 0; e < f.elements; ++e) {
+      bool all = true;
+      for (int a = 0; a <= f.order; ++a) all = all && in.count({fi, f.order * e + a});
+      if (all) return true;
+    }
   }
   return false;
 }
@@ -284,7 +334,7 @@ void validateLoads(const SceneDef& s, const Groups& groups) {
     const NodeSet& set = resolveGroup(groups, load.group, p + ".group");
     finite(load.vector, p + ".vector");
     validateTable(load.table, p + ".table");
-    if (load.kind == LoadKind::LineForce && !coversAnElement(s.fibres[set.fibre], set.nodes))
+    if (load.kind == LoadKind::LineForce && !coversAnElement(s, set))
       fail(p + ".group", "group '" + load.group + "' holds no whole element for a line force");
   }
 }

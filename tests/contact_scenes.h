@@ -41,7 +41,7 @@ inline SceneDef crossingBeams(double P, double pMax, int elements = 10) {
   s.materials.push_back({"m", 4000, 0.3, 1, 1});
   s.fibres.push_back(straightFibre("A", Vec3(-L / 2, 0, 0), Vec3(L / 2, 0, 0), R, elements, Vec3::UnitZ()));
   s.fibres.push_back(straightFibre("B", Vec3(0, -L / 2, 2 * R), Vec3(0, L / 2, 2 * R), R, elements, Vec3::UnitZ()));
-  GroupDef mid{"B.mid", "B", {elements}};  // the midspan node of a quadratic mesh
+  GroupDef mid{"B.mid", "B", {elements}, {}};  // the midspan node of a quadratic mesh
   s.groups.push_back(mid);
   for (const char* f : {"A", "B"}) {
     hold(s, std::string(f) + ".start", {X, Y, Z});
