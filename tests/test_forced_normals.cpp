@@ -7,12 +7,15 @@
 // the over yarn above the other and the centrelines apart by at least R_I + R_J - p_max,
 // measured from the nodes alone, and the step with the normal rules after it converges; a flat
 // 2 x 2 plain weave whose pattern is in the warp fibres' level tables ends its forced step with
-// every crossing in the pattern's order, within p_max.
+// every crossing in the pattern's order, within p_max; the sample's state hashes the same with
+// 1, 2 and 4 threads.
 #include "contact_scenes.h"
 #include "engine/world_state.h"
 #include "io/scene_loader.h"
+#include "store_bits.h"
 
 #include <doctest/doctest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 
@@ -253,5 +256,22 @@ TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' lev
     // crossing's centre between elements, 2-10 um deep (docs/CONTACT.md, "Forced normals:
     // measured"); checked here only against a yarn passing through.
     CHECK(smallest >= 2 * R - (step == 0 ? pMax : 0.02));
+  }
+}
+
+TEST_CASE("the forced-normal sample hashes the same with 1, 2 and 4 threads") {
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 4);
+  const SceneDef scene = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  std::uint64_t reference = 0;
+  for (int threads : {1, 2, 4}) {
+    CAPTURE(threads);
+    World w(scene, {.threads = threads});
+    while (!w.finished()) REQUIRE(w.step().status == StepStatus::Converged);
+    REQUIRE(w.contact().elements.size() > 0);
+    std::uint64_t h = test::hashBits(w.fibres().q);
+    h = test::hashBits(w.residual(), h);
+    h = test::hashBits(w.contact(), h);
+    if (threads == 1) reference = h;
+    CHECK(h == reference);
   }
 }
