@@ -9,7 +9,9 @@
 namespace fibra {
 namespace {
 
-std::string at(const char* list, size_t i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
+std::string at(const char* list, size_t i) {
+  return std::string(list) + "[" + std::to_string(i) + "]";
+}
 
 // Class index of every fibre, in order of first appearance ("" is 0).
 std::vector<int> classIndices(const SceneDef& s, std::map<std::string, int>& index) {
@@ -28,7 +30,8 @@ void levelTables(const SceneDef& s, ContactClasses& c) {
     const std::vector<LevelDef>& t = s.fibres[i].levels;
     for (size_t k = 0; k < t.size(); ++k) {
       const std::string path = at("fibres", i) + "." + at("levels", k);
-      if (k == 0 && t[k].from != 0) throw SceneError(path + ".from: the first piece must start at 0");
+      if (k == 0 && t[k].from != 0)
+        throw SceneError(path + ".from: the first piece must start at 0");
       if (k > 0 && !(t[k].from > t[k - 1].from))
         throw SceneError(path + ".from: must exceed the previous piece's start");
       if (!std::isfinite(t[k].level) || !std::isfinite(t[k].from))
@@ -44,7 +47,8 @@ void levelTables(const SceneDef& s, ContactClasses& c) {
 void addPairClass(const ContactPairDef& r, const std::string& path, ContactClasses& c) {
   if (!std::isnan(r.friction) && !(r.friction >= 0 && std::isfinite(r.friction)))
     throw SceneError(path + ".friction: must be a finite value >= 0");
-  if (!std::isnan(r.maxPenetration) && !(r.maxPenetration > 0 && std::isfinite(r.maxPenetration)))
+  const double p = r.maxPenetration;
+  if (!std::isnan(p) && !(p > 0 && std::isfinite(p)))
     throw SceneError(path + ".max_penetration: must be a finite value > 0");
   c.mu.push_back(std::isnan(r.friction) ? c.mu[0] : r.friction);
   c.pMax.push_back(std::isnan(r.maxPenetration) ? c.pMax[0] : r.maxPenetration);
@@ -54,7 +58,8 @@ int classIndex(const std::map<std::string, int>& index, const std::string& name,
                const std::string& path) {
   if (name.empty()) throw SceneError(path + ": empty class name (the default class is unnamed)");
   const auto it = index.find(name);
-  if (it == index.end()) throw SceneError(path + ": unknown class '" + name + "' (no fibre has it)");
+  if (it == index.end())
+    throw SceneError(path + ": unknown class '" + name + "' (no fibre has it)");
   return it->second;
 }
 

@@ -297,7 +297,8 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     std::uint8_t flags = sides.flags;
     const int forced = g.I == g.J ? 0 : forcedSign(p, g.I, sides.sI, g.J, sides.sJ);
     if (forced)
-      forcedParticles(I, J, fs.radius[g.I], fs.radius[g.J], forced * p.forcedNormal, xiI, xiJ, flags);
+      forcedParticles(I, J, fs.radius[g.I], fs.radius[g.J], forced * p.forcedNormal, xiI, xiJ,
+                      flags);
     else
       particlesWithEndFaces(fs, g, sides, I, J, xiI, xiJ, flags);
     el.zone[e] = z;

@@ -62,9 +62,9 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
 NormalGap forcedNormalAndGap(const Section& I, const Section& J, const double xiI[2],
                              const double xiJ[2], const Vec3& N);
 
-// Loop B: eqs. 10-11 (or the forced normal) again at the state q for the same particles; the friction reference's slip
-// g_rev,0 re-projected onto the new tangent plane; stats.normalTurn = the largest angle a
-// normal turned by, rad.
+// Loop B: eqs. 10-11 (or the forced normal) again at the state q for the same particles; the
+// friction reference's slip g_rev,0 re-projected onto the new tangent plane; stats.normalTurn =
+// the largest angle a normal turned by, rad.
 void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
                           const ContactParams& params, ContactElementStore& elements,
                           ContactLoopStats& stats, Trace* trace);

@@ -217,8 +217,8 @@ TEST_CASE("forced normals push two flat interpenetrating yarns apart, the over y
       CHECK(c.distance >= 2 * R - pMax);
       smallest = std::min(smallest, c.distance);
     }
-  MESSAGE("closest warp-weft centrelines after the forced step: " << smallest << " mm (2R - p_max = "
-                                                                  << 2 * R - pMax << ")");
+  MESSAGE("closest warp-weft centrelines after the forced step: "
+          << smallest << " mm (2R - p_max = " << 2 * R - pMax << ")");
   const StepReport r = w.step();  // the normal rules
   REQUIRE(r.status == StepStatus::Converged);
   CHECK(w.finished());
