@@ -49,6 +49,8 @@ struct ContactClasses {
   // --- per pair class ---
   std::vector<double> mu;            // friction coefficient between fibres
   std::vector<double> pMax;          // p_max of the pair class's zones, mm
+  std::vector<double> penaltyMin;    // penalty bounds of its zones, multiples of the zone's
+  std::vector<double> penaltyMax;    //   section stiffness (ZoneStore::stiffness)
 };
 
 struct ContactParams {
@@ -81,7 +83,8 @@ struct ContactParams {
   double penaltyChange = 10;    // bound on k_new / k_old (and its inverse) per update
   double penaltyTarget = 0.9;   // the deepest penetration of a zone is aimed at this x p_max
   double penaltyMin = 1;        // bounds on k as multiples of the zone's section stiffness
-  double penaltyMax = 1e4;      // (ZoneStore::stiffness, min(E_I R_I, E_J R_J))
+  double penaltyMax = 1e4;      // (ZoneStore::stiffness, min(E_I R_I, E_J R_J)); per pair class:
+                                // ContactClasses, copied into each zone
 
   // --- nested loops (paper section 4.4) ---
   int maxDetectionLoops = 3;       // n_A

@@ -50,8 +50,20 @@ void addPairClass(const ContactPairDef& r, const std::string& path, ContactClass
   const double p = r.maxPenetration;
   if (!std::isnan(p) && !(p > 0 && std::isfinite(p)))
     throw SceneError(path + ".max_penetration: must be a finite value > 0");
-  c.mu.push_back(std::isnan(r.friction) ? c.mu[0] : r.friction);
-  c.pMax.push_back(std::isnan(r.maxPenetration) ? c.pMax[0] : r.maxPenetration);
+  const auto orSection = [](double given, double section) {
+    return std::isnan(given) ? section : given;
+  };
+  const double lo = orSection(r.penaltyMin, c.penaltyMin[0]);
+  const double hi = orSection(r.penaltyMax, c.penaltyMax[0]);
+  if (!(lo > 0 && std::isfinite(lo)))
+    throw SceneError(path + ".penalty_min: must be a finite value > 0");
+  if (!(hi >= lo && std::isfinite(hi)))
+    throw SceneError(path + ".penalty_max: must be finite and >= penalty_min (" +
+                     std::to_string(lo) + ")");
+  c.mu.push_back(orSection(r.friction, c.mu[0]));
+  c.pMax.push_back(orSection(r.maxPenetration, c.pMax[0]));
+  c.penaltyMin.push_back(lo);
+  c.penaltyMax.push_back(hi);
 }
 
 int classIndex(const std::map<std::string, int>& index, const std::string& name,
@@ -104,19 +116,21 @@ void checkForcedNormals(const SceneDef& s) {
 
 }  // namespace
 
-ContactClasses defaultContactClasses(Index fibres, double mu, double pMax) {
+ContactClasses defaultContactClasses(Index fibres, const PairSettings& all) {
   ContactClasses c;
   c.classOf.assign(fibres, 0);
   c.firstLevel.assign(fibres + 1, 0);
   c.classes = 1;
   c.pairOf = {0};
-  c.mu = {mu};
-  c.pMax = {pMax};
+  c.mu = {all.mu};
+  c.pMax = {all.pMax};
+  c.penaltyMin = {all.penaltyMin};
+  c.penaltyMax = {all.penaltyMax};
   return c;
 }
 
-ContactClasses resolveContactClasses(const SceneDef& s, double mu, double pMax) {
-  ContactClasses c = defaultContactClasses(0, mu, pMax);
+ContactClasses resolveContactClasses(const SceneDef& s, const PairSettings& section) {
+  ContactClasses c = defaultContactClasses(0, section);
   std::map<std::string, int> index;
   c.classOf = classIndices(s, index);
   c.classes = int(index.size());

@@ -14,13 +14,22 @@
 
 namespace fibra {
 
-// One class, one pair class with friction mu and p_max (mm), no level tables, for n fibres.
-ContactClasses defaultContactClasses(Index fibres, double mu, double pMax);
+// The settings of one pair class.
+struct PairSettings {
+  double mu = 0;            // friction coefficient
+  double pMax = 0;          // mm
+  double penaltyMin = 1;    // penalty bounds, multiples of the zone's section stiffness
+  double penaltyMax = 1e4;
+};
 
-// The scene's classes, levels and pair classes; mu and pMax are the contact section's resolved
+// One class, one pair class with the settings `all`, no level tables, for n fibres.
+ContactClasses defaultContactClasses(Index fibres, const PairSettings& all);
+
+// The scene's classes, levels and pair classes; `section` holds the contact section's resolved
 // values. Throws SceneError naming the field: an unknown or empty class in a rule, a class pair
-// or keyword rule given twice, a negative friction, a p_max <= 0, a level table that does not
-// start at 0 or whose `from` do not increase, a forced normal in a scene without fibre contact.
-ContactClasses resolveContactClasses(const SceneDef& scene, double mu, double pMax);
+// or keyword rule given twice, a negative friction, a p_max <= 0, a penalty_min <= 0 or a
+// penalty_max below the rule's penalty_min, a level table that does not start at 0 or whose
+// `from` do not increase, a forced normal in a scene without fibre contact.
+ContactClasses resolveContactClasses(const SceneDef& scene, const PairSettings& section);
 
 }  // namespace fibra

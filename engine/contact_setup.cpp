@@ -58,7 +58,8 @@ ContactParams resolveContactParams(const FibreStore& fs, const ContactDef& def) 
   }
   p.skin = orDefault(def.skin, rMin / 2, "skin");
   p.pairs = defaultContactClasses(
-      n, def.friction, std::isfinite(def.maxPenetration) ? def.maxPenetration : 0.005 * rMin);
+      n, {def.friction, std::isfinite(def.maxPenetration) ? def.maxPenetration : 0.005 * rMin,
+          def.penaltyMin, def.penaltyMax});
   return p;
 }
 
@@ -81,7 +82,7 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.penaltyMax = def.penaltyMax;
   p.maxDetectionLoops = def.maxDetectionLoops;
   p.maxNormalLoops = def.maxNormalLoops;
-  p.pairs = resolveContactClasses(scene, p.mu, p.pMax);
+  p.pairs = resolveContactClasses(scene, {p.mu, p.pMax, p.penaltyMin, p.penaltyMax});
   p.mu = *std::max_element(p.pairs.mu.begin(), p.pairs.mu.end());
   return p;
 }
@@ -103,6 +104,8 @@ void buildTools(const SceneDef& scene, const FibreStore& fs, const MaterialStore
       zones.penalty.push_back(std::isfinite(params.initialPenalty) ? params.initialPenalty : ER);
       zones.pMax.push_back(tools.pMax.back());
       zones.stiffness.push_back(ER);
+      zones.penaltyMin.push_back(params.penaltyMin);
+      zones.penaltyMax.push_back(params.penaltyMax);
     }
   }
 }

@@ -151,7 +151,7 @@ struct OutputDef {
 enum class FrictionTangent { Consistent, Symmetrised };
 
 // Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
-// value). A rule names two contact classes (the same twice: pairs within that class), or is the
+// value): friction, p_max and the penalty bounds. A rule names two contact classes (the same twice: pairs within that class), or is the
 // keyword rule `within` (pairs of one class) or `between` (pairs of two different classes);
 // a named pair overrides a keyword rule, which overrides the contact section.
 enum class PairRule { Named, Within, Between };
@@ -161,6 +161,8 @@ struct ContactPairDef {
   std::array<std::string, 2> classes;  // Named: the two classes (order free)
   double friction = std::numeric_limits<double>::quiet_NaN();        // mu
   double maxPenetration = std::numeric_limits<double>::quiet_NaN();  // p_max, mm
+  double penaltyMin = std::numeric_limits<double>::quiet_NaN();  // floor, x section stiffness
+  double penaltyMax = std::numeric_limits<double>::quiet_NaN();  // ceiling, x section stiffness
 };
 
 struct ContactDef {
@@ -185,7 +187,7 @@ struct ContactDef {
   FrictionTangent frictionTangent = FrictionTangent::Consistent;
   int maxDetectionLoops = 3;          // n_A: contact elements fixed point
   int maxNormalLoops = 3;             // n_B: normals fixed point
-  std::vector<ContactPairDef> pairs;  // per pair class overrides of friction and max_penetration
+  std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 
 // A rigid tool whose surface touches the fibres through the same contact-friction laws. Its

@@ -21,7 +21,7 @@ std::vector<LevelDef> readLevels(const Json& j, const std::string& path) {
 }
 
 ContactPairDef readContactPair(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"classes", "friction", "max_penetration"});
+  const Fields f(j, path, {"classes", "friction", "max_penetration", "penalty_min", "penalty_max"});
   ContactPairDef d;
   const Json& c = f.at("classes");
   if (c.is_string()) {
@@ -38,6 +38,8 @@ ContactPairDef readContactPair(const Json& j, const std::string& path) {
   }
   d.friction = f.number("friction", d.friction);
   d.maxPenetration = f.number("max_penetration", d.maxPenetration);
+  d.penaltyMin = f.number("penalty_min", d.penaltyMin);
+  d.penaltyMax = f.number("penalty_max", d.penaltyMax);
   return d;
 }
 

@@ -18,6 +18,8 @@ void carryZonePenalties(const FibreStore& fs, const MaterialStore& materials,
     const int c = pairClass(p, z.fibreI[i], z.fibreJ[i]);
     z.pMax[i] = p.pairs.pMax[c];
     z.friction[i] = p.pairs.mu[c];
+    z.penaltyMin[i] = p.pairs.penaltyMin[c];
+    z.penaltyMax[i] = p.pairs.penaltyMax[c];
   }
 }
 

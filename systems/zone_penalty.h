@@ -3,10 +3,11 @@
 //
 // Reads  FibreStore (radii, materials), MaterialStore (E), ContactParams (initial k, the pair
 //        classes), the previous call's ZoneStore (penalty), the new zones' `previous`.
-// Writes the new ZoneStore's penalty, pMax, friction and stiffness columns.
+// Writes the new ZoneStore's penalty, pMax, friction, penalty bounds and stiffness columns.
 //   k_z = k_previous(z) when the zone matches a previous one (its own id continued, or a part
 //         split off it: systems/zone_identity.h), else k0 = min(E_I R_I, E_J R_J) (or the
-//         scene's initial penalty); p_max,z and mu_z = those of the pair class of (I, J) (looked
+//         scene's initial penalty); p_max,z, mu_z and the penalty bounds = those of the pair
+//         class of (I, J) (looked
 //         up once per zone: systems/contact_params.h); stiffness_z = min(E_I R_I, E_J R_J).
 // Serial over zones (a copy per zone).
 #pragma once

@@ -28,9 +28,6 @@ SceneDef twoPairs(double mu0, double pMax0, double mu1, double pMax1) {
   s.materials = one.materials;
   s.contact = one.contact;
   s.contact.maxReversibleSlip = 5e-4;
-  // The penalty floor (penalty_min x E R = 400 N/mm) would hold these light contacts below
-  // p_max: a lower floor lets each zone's penalty bring its penetration to its own p_max.
-  s.contact.penaltyMin = 1e-2;
   const Table drag{{0, 1, 2}, {0, 0, 1}};
   for (int k = 0; k < 2; ++k) {
     const std::string a = "A" + std::to_string(k), b = "B" + std::to_string(k);
@@ -48,9 +45,11 @@ SceneDef twoPairs(double mu0, double pMax0, double mu1, double pMax1) {
     hold(s, b + ".end", {X, Y, Z}, Vec3(0.05, 0, 0), drag);
     s.loads.push_back({LoadKind::Force, b + ".mid", Vec3(0, 0, -kLoad), {{0, 1, 2}, {0, 1, 1}}});
   }
+  // The section's penalty floor (penalty_min 1 x E R = 400 N/mm) would hold these light contacts
+  // below p_max: each rule lowers its own, so that each zone's penetration reaches its p_max.
   ContactPairDef p0, p1;
-  p0.classes = {"a0", "b0"}, p0.friction = mu0, p0.maxPenetration = pMax0;
-  p1.classes = {"b1", "a1"}, p1.friction = mu1, p1.maxPenetration = pMax1;
+  p0.classes = {"a0", "b0"}, p0.friction = mu0, p0.maxPenetration = pMax0, p0.penaltyMin = 1e-2;
+  p1.classes = {"b1", "a1"}, p1.friction = mu1, p1.maxPenetration = pMax1, p1.penaltyMin = 1e-2;
   s.contact.pairs = {p0, p1};
   StepDef press, slide;
   press.increments = 4;
@@ -85,6 +84,7 @@ TEST_CASE("each pair class has its own friction and p_max: penetration and slip 
     const int k = int(z.fibreI[i] / 2);
     CHECK(z.friction[i] == mu[k]);
     CHECK(z.pMax[i] == pMax[k]);
+    CHECK(z.penaltyMin[i] == 1e-2);
   }
   while (!w.finished()) REQUIRE(w.step().status == StepStatus::Converged);
   for (int k = 0; k < 2; ++k) {
@@ -100,6 +100,23 @@ TEST_CASE("each pair class has its own friction and p_max: penetration and slip 
   }
 }
 
+TEST_CASE("penalty bounds per pair class: the section's floor holds the other pair shallow") {
+  SceneDef s = twoPairs(0.1, 1e-4, 0.3, 4e-4);
+  s.contact.pairs[1].penaltyMin = std::nan("");  // pair 1 takes the section's floor, 1 x E R
+  s.steps.resize(1);
+  World w(s);
+  while (!w.finished()) REQUIRE(w.step().status == StepStatus::Converged);
+  MESSAGE("deepest penetration: pair 0 " << deepest(w, 0) << " mm, pair 1 " << deepest(w, 1)
+                                         << " mm");
+  CHECK(deepest(w, 0) >= 0.5 * 1e-4);  // its own floor, 1e-2 E R: at its p_max
+  CHECK(deepest(w, 1) < 0.5 * 4e-4);   // held by the section's floor
+  const ZoneStore& z = w.contact().zones;
+  REQUIRE(z.size() == 2);
+  CHECK(z.penaltyMin[1] == 1);
+  CHECK(z.penalty[1] == doctest::Approx(400).epsilon(1e-12));  // E R: at the floor
+  CHECK(z.penalty[0] < 400);
+}
+
 TEST_CASE("keyword pair rules: within and between, a named pair above them") {
   SceneDef s = twoPairs(0.1, 1e-4, 0.3, 4e-4);
   s.fibres[1].contactClass = "a0";  // pair 0 within class a0
@@ -108,6 +125,7 @@ TEST_CASE("keyword pair rules: within and between, a named pair above them") {
   ContactPairDef within, between;
   within.rule = PairRule::Within, within.friction = 0.05;
   between.rule = PairRule::Between, between.friction = 0.2, between.maxPenetration = 2e-4;
+  between.penaltyMax = 50;
   s.contact.pairs.push_back(within);
   s.contact.pairs.push_back(between);
   s.contact.friction = 0.01;
@@ -126,6 +144,8 @@ TEST_CASE("keyword pair rules: within and between, a named pair above them") {
   CHECK(k.contact().zones.friction[0] == 0.05);  // within
   CHECK(k.contact().zones.friction[1] == 0.2);   // between
   CHECK(k.contact().zones.pMax[1] == 2e-4);
+  CHECK(k.contact().zones.penaltyMax[1] == 50);
+  CHECK(k.contact().zones.penaltyMax[0] == 1e4);  // the section's
 }
 
 TEST_CASE("pair rules and levels that cannot hold are scene errors naming the field") {
@@ -145,6 +165,10 @@ TEST_CASE("pair rules and levels that cannot hold are scene errors naming the fi
         "contact.pairs[0].friction: must be a finite value >= 0");
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].maxPenetration = 0; }) ==
         "contact.pairs[1].max_penetration: must be a finite value > 0");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].penaltyMin = 0; }) ==
+        "contact.pairs[1].penalty_min: must be a finite value > 0");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].penaltyMax = 1e-3; }) ==
+        "contact.pairs[0].penalty_max: must be finite and >= penalty_min (0.010000)");
   CHECK(errorWith([](SceneDef& s) {
           s.contact.pairs[0].rule = s.contact.pairs[1].rule = PairRule::Between;
         }) == "contact.pairs[1].classes: this keyword rule is given twice");
