@@ -1,6 +1,7 @@
 #include "engine/contact_classes.h"
 
 #include "core/errors.h"
+#include "core/format.h"
 
 #include <cmath>
 #include <map>
@@ -58,8 +59,8 @@ void addPairClass(const ContactPairDef& r, const std::string& path, ContactClass
   if (!(lo > 0 && std::isfinite(lo)))
     throw SceneError(path + ".penalty_min: must be a finite value > 0");
   if (!(hi >= lo && std::isfinite(hi)))
-    throw SceneError(path + ".penalty_max: must be finite and >= penalty_min (" +
-                     std::to_string(lo) + ")");
+    throw SceneError(path + ".penalty_max: must be finite and >= penalty_min (" + number(lo) +
+                     ")");
   c.mu.push_back(orSection(r.friction, c.mu[0]));
   c.pMax.push_back(orSection(r.maxPenetration, c.pMax[0]));
   c.penaltyMin.push_back(lo);

@@ -151,9 +151,10 @@ struct OutputDef {
 enum class FrictionTangent { Consistent, Symmetrised };
 
 // Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
-// value): friction, p_max and the penalty bounds. A rule names two contact classes (the same twice: pairs within that class), or is the
-// keyword rule `within` (pairs of one class) or `between` (pairs of two different classes);
-// a named pair overrides a keyword rule, which overrides the contact section.
+// value): friction, p_max and the penalty bounds. A rule names two contact classes (the same
+// twice: pairs within that class), or is the keyword rule `within` (pairs of one class) or
+// `between` (pairs of two different classes); a named pair overrides a keyword rule, which
+// overrides the contact section.
 enum class PairRule { Named, Within, Between };
 
 struct ContactPairDef {

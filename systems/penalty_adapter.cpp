@@ -27,13 +27,17 @@ void adaptPenalties(std::span<const Index> zoneOf, std::span<const double> gap, 
 
 void adaptZonePenalties(const ContactParams& p, const ContactElementStore& el,
                         const ContactForceStore& f, ZoneStore& zones, ContactLoopStats& stats) {
-  adaptPenalties(el.zone, f.gap, {zones.pMax, zones.stiffness, zones.penaltyMin, zones.penaltyMax, zones.penalty}, p, stats);
+  adaptPenalties(el.zone, f.gap,
+                 {zones.pMax, zones.stiffness, zones.penaltyMin, zones.penaltyMax, zones.penalty}, p,
+                 stats);
 }
 
 void adaptToolZonePenalties(const ContactParams& p, const ToolContactStore& el,
                             const ContactForceStore& f, ToolZoneStore& zones,
                             ContactLoopStats& stats) {
-  adaptPenalties(el.zone, f.gap, {zones.pMax, zones.stiffness, zones.penaltyMin, zones.penaltyMax, zones.penalty}, p, stats);
+  adaptPenalties(el.zone, f.gap,
+                 {zones.pMax, zones.stiffness, zones.penaltyMin, zones.penaltyMax, zones.penalty}, p,
+                 stats);
 }
 
 }  // namespace fibra

@@ -16,9 +16,8 @@
 // at the ceiling with its deepest penetration above p_max costs accuracy: it is counted.
 //
 // adaptZonePenalties      reads ContactParams, ContactElementStore (zone), ContactForceStore
-//                         (gap), ZoneStore (pMax, stiffness, penalty bounds); writes
-//                         ZoneStore::penalty,
-//                         ContactLoopStats (penaltyChange, zonesAtCeiling).
+//                         (gap), ZoneStore (pMax, stiffness, penaltyMin, penaltyMax); writes
+//                         ZoneStore::penalty, ContactLoopStats (penaltyChange, zonesAtCeiling).
 // adaptToolZonePenalties  the same over ToolContactStore (zone) and ToolZoneStore.
 // penaltyChange is the largest |k_new / k_old - 1| of the update. Serial (a pass over elements).
 #pragma once

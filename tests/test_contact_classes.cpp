@@ -168,7 +168,7 @@ TEST_CASE("pair rules and levels that cannot hold are scene errors naming the fi
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].penaltyMin = 0; }) ==
         "contact.pairs[1].penalty_min: must be a finite value > 0");
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].penaltyMax = 1e-3; }) ==
-        "contact.pairs[0].penalty_max: must be finite and >= penalty_min (0.010000)");
+        "contact.pairs[0].penalty_max: must be finite and >= penalty_min (0.01)");
   CHECK(errorWith([](SceneDef& s) {
           s.contact.pairs[0].rule = s.contact.pairs[1].rule = PairRule::Between;
         }) == "contact.pairs[1].classes: this keyword rule is given twice");
