@@ -251,10 +251,10 @@ TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' lev
         smallest = std::min(smallest, c.distance);
       }
     MESSAGE("step " << step << ": closest warp-weft centrelines " << smallest << " mm");
-    // Forced normals hold every crossing within p_max. The normal rules after them do not: their
-    // 2-4 elements per crossing zone (particles towards the other centre, eq. 9) leave the
-    // crossing's centre between elements, 2-10 um deep (docs/CONTACT.md, "Forced normals:
-    // measured"); checked here only against a yarn passing through.
+    // Forced normals hold every crossing within p_max. The normal rules after them do not: with
+    // the particles of eq. 9 the paired sections of a sloped crossing do not face each other and
+    // the crossings sink 5.5 um (docs/CONTACT.md, "Forced normals: measured"); checked here only
+    // against a yarn passing through.
     CHECK(smallest >= 2 * R - (step == 0 ? pMax : 0.02));
   }
 }
