@@ -40,7 +40,10 @@ struct ZoneStore {
   std::vector<Index> elementCount;   // Nc, contact elements of the zone (>= 1)
   std::vector<double> penalty;       // k of the zone's elements, N/mm (eq. 13; carried from the
                                      // `previous` zone, systems/zone_penalty.h)
-  std::vector<double> pMax;          // p_max the zone's penalty aims at, mm
+  std::vector<double> pMax;          // p_max the zone's penalty aims at, mm (its pair class's)
+  std::vector<double> friction;      // mu of the zone's elements (its pair class's)
+  std::vector<double> penaltyMin;    // bounds on k, multiples of `stiffness` (its pair class's)
+  std::vector<double> penaltyMax;
   std::vector<double> stiffness;     // section stiffness min(E_I R_I, E_J R_J), N/mm: the scale
                                      // of the penalty's bounds (ContactParams::penaltyMin/Max)
 

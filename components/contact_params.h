@@ -32,6 +32,27 @@
 
 namespace fibra {
 
+// Contact classes of the fibres, the settings of each pair class, and the fibres' level tables
+// (docs/SCENE.md: `class`, `levels`, contact `pairs`, forced normals). Resolved once by
+// engine/contact_classes.cpp; looked up per zone (systems/zone_penalty.h) and per element under
+// forced normals (systems/contact_params.h). No logic here.
+struct ContactClasses {
+  // --- per fibre ---
+  std::vector<int> classOf;          // contact class index (0: the default class "")
+  std::vector<Index> firstLevel;     // fibre f's pieces are [firstLevel[f], firstLevel[f + 1])
+  // --- per level piece (fibre by fibre, increasing `from`) ---
+  std::vector<double> levelFrom;     // reference arc length where the piece starts, mm
+  std::vector<double> level;         // the fibre's level on the piece
+  // --- per (class a, class b) ---
+  int classes = 1;                   // number of classes
+  std::vector<int> pairOf;           // pair-class index of classes (a, b): pairOf[a * classes + b]
+  // --- per pair class ---
+  std::vector<double> mu;            // friction coefficient between fibres
+  std::vector<double> pMax;          // p_max of the pair class's zones, mm
+  std::vector<double> penaltyMin;    // penalty bounds of its zones, multiples of the zone's
+  std::vector<double> penaltyMax;    //   section stiffness (ZoneStore::stiffness)
+};
+
 struct ContactParams {
   // --- per fibre ---
   std::vector<double> reach;           // half of its share of Delta_prox, mm
@@ -50,7 +71,8 @@ struct ContactParams {
   // --- contact law (eqs. 12-16) ---
   double pMax = 0;              // p_max of fibre-fibre zones, mm
   double pRegRatio = 0.5;       // p_reg / p_max
-  double mu = 0;                // friction coefficient between fibres (tools: ToolStore)
+  double mu = 0;                // largest friction coefficient between fibres (per zone:
+                                // ZoneStore::friction; tools: ToolStore)
   double gMax = 0;              // reversible slip g_T,max, mm
   bool symmetrised = false;     // friction tangent without its non-symmetric part
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
@@ -61,7 +83,8 @@ struct ContactParams {
   double penaltyChange = 10;    // bound on k_new / k_old (and its inverse) per update
   double penaltyTarget = 0.9;   // the deepest penetration of a zone is aimed at this x p_max
   double penaltyMin = 1;        // bounds on k as multiples of the zone's section stiffness
-  double penaltyMax = 1e4;      // (ZoneStore::stiffness, min(E_I R_I, E_J R_J))
+  double penaltyMax = 1e4;      // (ZoneStore::stiffness, min(E_I R_I, E_J R_J)); per pair class:
+                                // ContactClasses, copied into each zone
 
   // --- nested loops (paper section 4.4) ---
   int maxDetectionLoops = 3;       // n_A
@@ -70,6 +93,11 @@ struct ContactParams {
   double particleTolerance = 1e-3; // x R_min: loop A stops when no centreline moved more
   double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
   double stepPenetration = 10;     // x p_max: deepest closing of an element in one Newton step
+
+  // --- contact classes and pair classes ---
+  ContactClasses pairs;
+  // --- forced normals of the current step (StepDef::forcedNormal; set by the step driver) ---
+  Vec3 forcedNormal = Vec3::Zero();  // unit; zero: the normal rules of eq. 10
 };
 
 }  // namespace fibra

@@ -37,6 +37,8 @@ struct ToolZoneStore {
   std::vector<double> penalty;  // k, N/mm
   std::vector<double> pMax;     // p_max aimed at, mm (the tool's)
   std::vector<double> stiffness;  // section stiffness E_f R_f, N/mm: scale of the penalty bounds
+  std::vector<double> penaltyMin;  // bounds on k, multiples of `stiffness` (the contact section's)
+  std::vector<double> penaltyMax;
 
   Index size() const { return Index(penalty.size()); }
 };

@@ -1,5 +1,8 @@
 #include "engine/contact_setup.h"
 
+#include "engine/contact_classes.h"
+
+#include <algorithm>
 #include <numbers>
 #include <string>
 
@@ -54,6 +57,9 @@ ContactParams resolveContactParams(const FibreStore& fs, const ContactDef& def) 
     p.selfSeparation[f] = std::max(s, h);
   }
   p.skin = orDefault(def.skin, rMin / 2, "skin");
+  p.pairs = defaultContactClasses(
+      n, {def.friction, std::isfinite(def.maxPenetration) ? def.maxPenetration : 0.005 * rMin,
+          def.penaltyMin, def.penaltyMax});
   return p;
 }
 
@@ -76,6 +82,8 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.penaltyMax = def.penaltyMax;
   p.maxDetectionLoops = def.maxDetectionLoops;
   p.maxNormalLoops = def.maxNormalLoops;
+  p.pairs = resolveContactClasses(scene, {p.mu, p.pMax, p.penaltyMin, p.penaltyMax});
+  p.mu = *std::max_element(p.pairs.mu.begin(), p.pairs.mu.end());
   return p;
 }
 
@@ -96,6 +104,8 @@ void buildTools(const SceneDef& scene, const FibreStore& fs, const MaterialStore
       zones.penalty.push_back(std::isfinite(params.initialPenalty) ? params.initialPenalty : ER);
       zones.pMax.push_back(tools.pMax.back());
       zones.stiffness.push_back(ER);
+      zones.penaltyMin.push_back(params.penaltyMin);
+      zones.penaltyMax.push_back(params.penaltyMax);
     }
   }
 }

@@ -48,6 +48,15 @@ struct GeometryDef {
   double phase = 0;             // starting angle, rad
 };
 
+// A piece of a fibre's level table: from reference arc length `from` on (until the next piece)
+// the fibre lies at `level` (dimensionless; only the order of two levels matters). Where two
+// fibres of different contact classes cross during a step with forced normals, the one at the
+// higher level goes over (docs/SCENE.md, "Forced normals").
+struct LevelDef {
+  double from = 0;   // reference arc length where the piece starts, mm (the first piece: 0)
+  double level = 0;
+};
+
 struct FibreDef {
   std::string name;
   std::string material;  // a MaterialDef name
@@ -56,6 +65,8 @@ struct FibreDef {
   int order = 2;         // 1 linear, 2 quadratic
   GeometryDef geometry;
   BeamIntegration integration;
+  std::string contactClass;        // contact class (a yarn's fibres share one); "": the default
+  std::vector<LevelDef> levels;    // level table along the fibre (empty: level 0 everywhere)
 };
 
 // A named set of nodes. Every fibre F also has the groups "F.start", "F.end" and "F.all".
@@ -116,6 +127,10 @@ struct StepDef {
   bool lineSearch = false;         // non-monotone line search in Newton (systems/newton.h)
   double damping = 0;              // viscous continuation c, N/mm x pseudo-time per node (0: off)
   int outputEvery = 1;             // write output every n converged increments (and the last)
+  // Forced normals (paper section 5.2.1): unit direction D; zero: the normal rules (eq. 10).
+  // During the step, between fibres of different contact classes whose levels differ at the
+  // element, N = +D when I's level is the higher, else -D (docs/SCENE.md).
+  Vec3 forcedNormal = Vec3::Zero();
 };
 
 struct ProbeDef {
@@ -139,6 +154,22 @@ struct OutputDef {
 // the default" (docs/SCENE.md gives the rules, which use the radii and element lengths).
 enum class FrictionTangent { Consistent, Symmetrised };
 
+// Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
+// value): friction, p_max and the penalty bounds. A rule names two contact classes (the same
+// twice: pairs within that class), or is the keyword rule `within` (pairs of one class) or
+// `between` (pairs of two different classes); a named pair overrides a keyword rule, which
+// overrides the contact section.
+enum class PairRule { Named, Within, Between };
+
+struct ContactPairDef {
+  PairRule rule = PairRule::Named;
+  std::array<std::string, 2> classes;  // Named: the two classes (order free)
+  double friction = std::numeric_limits<double>::quiet_NaN();        // mu
+  double maxPenetration = std::numeric_limits<double>::quiet_NaN();  // p_max, mm
+  double penaltyMin = std::numeric_limits<double>::quiet_NaN();  // floor, x section stiffness
+  double penaltyMax = std::numeric_limits<double>::quiet_NaN();  // ceiling, x section stiffness
+};
+
 struct ContactDef {
   bool enabled = false;
   // --- detection ---
@@ -161,6 +192,7 @@ struct ContactDef {
   FrictionTangent frictionTangent = FrictionTangent::Consistent;
   int maxDetectionLoops = 3;          // n_A: contact elements fixed point
   int maxNormalLoops = 3;             // n_B: normals fixed point
+  std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 
 // A rigid tool whose surface touches the fibres through the same contact-friction laws. Its

@@ -59,9 +59,11 @@ double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonR
   return dt * (nr.smallest > 1 ? 0.25 : 0.5);
 }
 
-// The trial starts from the last converged state; the continuation's c/dt for its size.
+// The trial starts from the last converged state; the continuation's c/dt for its size; the
+// step's forced normals (zero: the normal rules) for the detections and normal updates.
 void beginAttempt(WorldState& w, const StepDef& st, double size) {
   if (hasContact(w)) w.trial = w.committed;
+  w.contact.forcedNormal = st.forcedNormal;
   w.stabilisation.qStart = w.fibres.q;
   w.stabilisation.viscous = st.damping / size;
 }

@@ -84,7 +84,8 @@ BeamIntegration readIntegration(const Json& j, const std::string& path) {
 
 FibreDef readFibre(const Json& j, const std::string& path) {
   const Fields f(j, path,
-                 {"name", "material", "radius", "elements", "order", "geometry", "integration"});
+                 {"name", "material", "radius", "elements", "order", "geometry", "integration",
+                  "class", "levels"});
   FibreDef d;
   d.name = f.string("name");
   d.material = f.string("material");
@@ -94,6 +95,8 @@ FibreDef readFibre(const Json& j, const std::string& path) {
   d.geometry = readGeometry(f.at("geometry"), f.path("geometry"));
   if (f.has("integration"))
     d.integration = readIntegration(f.at("integration"), f.path("integration"));
+  d.contactClass = f.string("class", d.contactClass);
+  if (f.has("levels")) d.levels = readLevels(f.at("levels"), f.path("levels"));
   return d;
 }
 
@@ -120,7 +123,8 @@ GroupDef readGroup(const Json& j, const std::string& path) {
 StepDef readStep(const Json& j, const std::string& path) {
   const Fields f(j, path,
                  {"name", "end_time", "increments", "max_iterations", "force_tolerance",
-                  "increment_tolerance", "max_cutbacks", "line_search", "damping", "output_every"});
+                  "increment_tolerance", "max_cutbacks", "line_search", "damping", "output_every",
+                  "forced_normals"});
   StepDef s;
   s.name = f.string("name", s.name);
   s.endTime = f.number("end_time", s.endTime);
@@ -132,6 +136,8 @@ StepDef readStep(const Json& j, const std::string& path) {
   s.lineSearch = f.boolean("line_search", s.lineSearch);
   s.damping = f.number("damping", s.damping);
   s.outputEvery = f.integer("output_every", s.outputEvery);
+  if (f.has("forced_normals"))
+    s.forcedNormal = readForcedNormals(f.at("forced_normals"), f.path("forced_normals"));
   return s;
 }
 

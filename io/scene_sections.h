@@ -30,4 +30,9 @@ ContactDef readContact(const Json& j, const std::string& path);
 StabilisationDef readStabilisation(const Json& j, const std::string& path);
 SolverDef readSolver(const Json& j, const std::string& path);
 
+// scene_loader_contact.cpp
+std::vector<LevelDef> readLevels(const Json& j, const std::string& path);
+ContactPairDef readContactPair(const Json& j, const std::string& path);
+Vec3 readForcedNormals(const Json& j, const std::string& path);
+
 }  // namespace fibra::scene_sections

@@ -241,6 +241,39 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, double delta, double
   return out;
 }
 
+// The particles of eq. 9 (towards the other section's centre), or on an end face when one
+// section is an end of its fibre and the other lies beyond it.
+void particlesWithEndFaces(const FibreStore& fs, const Intermediate& g, const ElementSides& sides,
+                           const Section& I, const Section& J, double xiI[2], double xiJ[2],
+                           std::uint8_t& flags) {
+  particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
+  if (g.I == g.J) return;
+  double xiE[2];
+  if (endFaceParticle(fs, g.I, sides.sI, I, J.x0, fs.radius[g.I], xiE)) {
+    xiI[0] = xiE[0], xiI[1] = xiE[1];
+    facingParticle(J, fs.radius[g.J], I.x0 + xiE[0] * I.g1 + xiE[1] * I.g2, xiJ);
+    flags |= kEndFaceI;
+  } else if (endFaceParticle(fs, g.J, sides.sJ, J, I.x0, fs.radius[g.J], xiE)) {
+    xiJ[0] = xiE[0], xiJ[1] = xiE[1];
+    facingParticle(I, fs.radius[g.I], J.x0 + xiE[0] * J.g1 + xiE[1] * J.g2, xiI);
+    flags |= kEndFaceJ;
+  }
+}
+
+// Under a forced normal N (from J to I): I's particle on its outline towards -N, J's towards +N,
+// whatever the centres do (they may coincide where the centrelines cross). A section whose plane
+// N is normal to keeps the particle of eq. 9 (with its fallback).
+void forcedParticles(const Section& I, const Section& J, double RI, double RJ, const Vec3& N,
+                     double xiI[2], double xiJ[2], std::uint8_t& flags) {
+  const bool okI = outlinePoint(I.g1, I.g2, RI, -N, xiI);
+  const bool okJ = outlinePoint(J.g1, J.g2, RJ, N, xiJ);
+  if (okI && okJ) return;
+  double eqI[2], eqJ[2];
+  particles(I, J, RI, RJ, eqI, eqJ, flags);
+  if (!okI) xiI[0] = eqI[0], xiI[1] = eqI[1];
+  if (!okJ) xiJ[0] = eqJ[0], xiJ[1] = eqJ[1];
+}
+
 void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
                   const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
@@ -262,20 +295,12 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];
     std::uint8_t flags = sides.flags;
-    particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
-    if (g.I != g.J) {
-      double xiE[2];
-      const bool endI = endFaceParticle(fs, g.I, sides.sI, I, J.x0, fs.radius[g.I], xiE);
-      if (endI) {
-        xiI[0] = xiE[0], xiI[1] = xiE[1];
-        facingParticle(J, fs.radius[g.J], I.x0 + xiE[0] * I.g1 + xiE[1] * I.g2, xiJ);
-        flags |= kEndFaceI;
-      } else if (endFaceParticle(fs, g.J, sides.sJ, J, I.x0, fs.radius[g.J], xiE)) {
-        xiJ[0] = xiE[0], xiJ[1] = xiE[1];
-        facingParticle(I, fs.radius[g.I], J.x0 + xiE[0] * J.g1 + xiE[1] * J.g2, xiI);
-        flags |= kEndFaceJ;
-      }
-    }
+    const int forced = g.I == g.J ? 0 : forcedSign(p, g.I, sides.sI, g.J, sides.sJ);
+    if (forced)
+      forcedParticles(I, J, fs.radius[g.I], fs.radius[g.J], forced * p.forcedNormal, xiI, xiJ,
+                      flags);
+    else
+      particlesWithEndFaces(fs, g, sides, I, J, xiI, xiJ, flags);
     el.zone[e] = z;
     el.fibreI[e] = g.I;
     el.sI[e] = sides.sI;
@@ -285,8 +310,10 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.sJ[e] = sides.sJ;
     el.xiJ1[e] = xiJ[0];
     el.xiJ2[e] = xiJ[1];
-    const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J],
-                                      p.thetaParallel, p.thetaCross, flags);
+    const NormalGap ng =
+        forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * p.forcedNormal)
+               : normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J], p.thetaParallel,
+                              p.thetaCross, flags);
     el.normal[e] = ng.normal;
     el.gap[e] = ng.gap;
     el.theta[e] = ng.theta;

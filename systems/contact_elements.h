@@ -34,6 +34,10 @@
 //     facing it; N is normal to the other fibre's axis through it (kEndFaceI / kEndFaceJ,
 //     systems/contact_normals.h). So no contact exists past an end, and an end's face and rim
 //     touch the other fibre's side.
+//   Forced normals (a step's forced_normals; systems/contact_normals.h): when the element's
+//     fibres are of different classes with different levels at sI, sJ, N = sign D and the
+//     particles are the outline points facing along N instead (I's towards -N, J's towards +N),
+//     with no end-face rule; centrelines that cross (coincident centres) are no special case.
 //
 // Degenerate cases (documented in docs/CONTACT.md, flagged in ContactElementStore::fallback):
 //   t_int = 0 (zero-length zone, or cancelling pieces): t_int := bisector of the tangents

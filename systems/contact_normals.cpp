@@ -66,6 +66,15 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
   return out;
 }
 
+NormalGap forcedNormalAndGap(const Section& I, const Section& J, const double xiI[2],
+                             const double xiJ[2], const Vec3& N) {
+  const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
+  const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
+  const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
+  const double theta = std::atan2(tI.cross(tJ).norm(), std::abs(tI.dot(tJ)));
+  return {N, (xI - xJ).dot(N), theta, 0, false};
+}
+
 void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
                           const ContactParams& params, ContactElementStore& el,
                           ContactLoopStats& stats, Trace* trace) {
@@ -79,9 +88,11 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
           const Section I = contactSection(fs, q, fI, el.sI[e]);
           const Section J = contactSection(fs, q, fJ, el.sJ[e]);
           const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
-          const NormalGap ng = normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
-                                            params.thetaParallel, params.thetaCross,
-                                            el.fallback[e]);
+          const int forced = forcedSign(params, fI, el.sI[e], fJ, el.sJ[e]);
+          const NormalGap ng =
+              forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * params.forcedNormal)
+                     : normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
+                                    params.thetaParallel, params.thetaCross, el.fallback[e]);
           turned = std::max(turned, std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
           el.normal[e] = ng.normal;
           el.gap[e] = ng.gap;

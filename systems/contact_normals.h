@@ -26,6 +26,15 @@
 // Degenerate: n_par undefined (|d| <= 1e-9 (R_I + R_J)) with w < 1: N = n_cross when
 // w > 0; else (coincident centres of parallel fibres) N = (xJ - xI) / |xJ - xI| from the
 // particles, which then face each other: a full penetration gN = -|xI - xJ|. kFallbackNormal.
+//
+// Forced normals (paper section 5.2.1; StepDef::forcedNormal): during a step that forces them,
+// an element between fibres of different contact classes whose levels differ there has
+//   N = sign D,  sign = +1 when I's level is the higher (I over J), else -1
+// (systems/contact_params.h, forcedSign), whatever the centrelines do: they may cross (d = 0,
+// eq. 10 undefined) or I may still lie below J. Its particles were put on the outlines facing
+// along N at generation (I's towards -N, J's towards +N, systems/contact_elements.cpp), so that
+// for circular sections gN = (x0I - x0J).N - (R_I + R_J): negative until I has passed over J.
+// N is constant, so the law's linearisation (fixed N, systems/contact_law.h) is exact.
 #pragma once
 
 #include "components/contact.h"
@@ -49,9 +58,13 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
                        double thetaCross, std::uint8_t flags = 0);
 
-// Loop B: eqs. 10-11 again at the state q for the same particles; the friction reference's slip
-// g_rev,0 re-projected onto the new tangent plane; stats.normalTurn = the largest angle a
-// normal turned by, rad.
+// A forced normal N (unit) and the gap gN = (xI(xi_I) - xJ(xi_J)).N; theta as above, crossWeight 0.
+NormalGap forcedNormalAndGap(const Section& I, const Section& J, const double xiI[2],
+                             const double xiJ[2], const Vec3& N);
+
+// Loop B: eqs. 10-11 (or the forced normal) again at the state q for the same particles; the
+// friction reference's slip g_rev,0 re-projected onto the new tangent plane; stats.normalTurn =
+// the largest angle a normal turned by, rad.
 void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
                           const ContactParams& params, ContactElementStore& elements,
                           ContactLoopStats& stats, Trace* trace);

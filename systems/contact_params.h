@@ -1,5 +1,6 @@
-// Contact detection parameters derived per fibre pair (docs/CONTACT.md): the proximity distance
-// Delta_prox(I, J) and the test-point spacing l_zp(I, J). Header-only.
+// Contact parameters derived per fibre pair (docs/CONTACT.md): the proximity distance
+// Delta_prox(I, J), the test-point spacing l_zp(I, J), the pair class of (I, J) and, under
+// forced normals, the orientation of the forced normal. Header-only.
 #pragma once
 
 #include "components/contact_params.h"
@@ -22,6 +23,31 @@ inline int testIntervalsPerElement(const FibreStore& fs, const ContactParams& p,
   const double l = std::isnan(p.testPointSpacing) ? std::min(h / 2, fs.radius[I] + fs.radius[J])
                                                   : p.testPointSpacing;
   return std::max(1, int(std::ceil(h / l * (1 - 1e-12))));
+}
+
+// Pair-class index of fibres I and J (ContactClasses::mu, pMax).
+inline int pairClass(const ContactParams& p, Index I, Index J) {
+  const ContactClasses& c = p.pairs;
+  return c.pairOf[c.classOf[I] * c.classes + c.classOf[J]];
+}
+
+// Level of fibre f at reference arc length s (mm): the last piece starting at or before s
+// (0 for a fibre without a level table).
+inline double levelAt(const ContactParams& p, Index f, double s) {
+  const ContactClasses& c = p.pairs;
+  double level = 0;
+  for (Index i = c.firstLevel[f]; i < c.firstLevel[f + 1] && c.levelFrom[i] <= s; ++i)
+    level = c.level[i];
+  return level;
+}
+
+// Orientation of the forced normal of the element between (I, sI) and (J, sJ): +1 (N = +D, I
+// over J) when I's level there is the higher, -1 when J's is, 0 when the normal is not forced
+// (no forced direction in this step, fibres of one class, or equal levels).
+inline int forcedSign(const ContactParams& p, Index I, double sI, Index J, double sJ) {
+  if (p.forcedNormal.squaredNorm() == 0 || p.pairs.classOf[I] == p.pairs.classOf[J]) return 0;
+  const double lI = levelAt(p, I, sI), lJ = levelAt(p, J, sJ);
+  return lI > lJ ? 1 : lI < lJ ? -1 : 0;
 }
 
 }  // namespace fibra

@@ -13,7 +13,8 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
   tbb::parallel_for(Index(0), el.size(), [&](Index e) {
     const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
     const Index z = el.zone[e];
-    const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z], p.mu, p.gMax};
+    const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
+                               zones.friction[z], p.gMax};
     const ContactLawResult r = contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised);
     storeContactLaw(r, e, out);
   });

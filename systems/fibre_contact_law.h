@@ -1,12 +1,12 @@
 // Fibre-fibre contact law system: the force and stiffness of every fibre-fibre contact element at
 // the current state, for fixed particles and normals (paper section 4).
 //
-// Reads  FibreStore (q), ContactParams (p_reg / p_max, mu, g_T,max, symmetrised), ZoneStore
-//        (penalty and p_max per zone), ContactElementStore (particle weights, normal, friction
-//        reference).
+// Reads  FibreStore (q), ContactParams (p_reg / p_max, g_T,max, symmetrised), ZoneStore
+//        (penalty, p_max and mu per zone: its pair class's), ContactElementStore (particle
+//        weights, normal, friction reference).
 // Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element).
 // Per element: d = x^I - x^J from the particle weights, the law of systems/contact_law.h with the
-// zone's penalty k and p_reg = (p_reg / p_max) p_max,zone.
+// zone's penalty k, p_reg = (p_reg / p_max) p_max,zone and mu = mu_zone.
 // Threading: parallel over elements, each writing its own entries. Runs beside the beam
 // evaluation and the tool contact law: it writes nothing they read.
 #pragma once

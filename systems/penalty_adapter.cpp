@@ -17,7 +17,7 @@ void adaptPenalties(std::span<const Index> zoneOf, std::span<const double> gap, 
   for (size_t i = 0; i < z.penalty.size(); ++i) {
     if (deepest[i] <= 0) continue;
     const double factor = std::clamp(deepest[i] / (p.penaltyTarget * z.pMax[i]), 1 / beta, beta);
-    const double lo = p.penaltyMin * z.stiffness[i], hi = p.penaltyMax * z.stiffness[i];
+    const double lo = z.penaltyMin[i] * z.stiffness[i], hi = z.penaltyMax[i] * z.stiffness[i];
     const double k = std::clamp(z.penalty[i] * factor, lo, hi);
     stats.penaltyChange = std::max(stats.penaltyChange, std::abs(k / z.penalty[i] - 1));
     z.penalty[i] = k;
@@ -27,13 +27,17 @@ void adaptPenalties(std::span<const Index> zoneOf, std::span<const double> gap, 
 
 void adaptZonePenalties(const ContactParams& p, const ContactElementStore& el,
                         const ContactForceStore& f, ZoneStore& zones, ContactLoopStats& stats) {
-  adaptPenalties(el.zone, f.gap, {zones.pMax, zones.stiffness, zones.penalty}, p, stats);
+  adaptPenalties(el.zone, f.gap,
+                 {zones.pMax, zones.stiffness, zones.penaltyMin, zones.penaltyMax, zones.penalty}, p,
+                 stats);
 }
 
 void adaptToolZonePenalties(const ContactParams& p, const ToolContactStore& el,
                             const ContactForceStore& f, ToolZoneStore& zones,
                             ContactLoopStats& stats) {
-  adaptPenalties(el.zone, f.gap, {zones.pMax, zones.stiffness, zones.penalty}, p, stats);
+  adaptPenalties(el.zone, f.gap,
+                 {zones.pMax, zones.stiffness, zones.penaltyMin, zones.penaltyMax, zones.penalty}, p,
+                 stats);
 }
 
 }  // namespace fibra

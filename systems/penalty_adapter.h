@@ -6,7 +6,8 @@
 //   g_z = max over the zone's elements of -g_N (only zones with a penetration, g_z > 0, change),
 // target = ContactParams::penaltyTarget (0.9: aims a little inside p_max), beta =
 // ContactParams::penaltyChange (bounds one update), s_z = the zone's section stiffness
-// min(E_I R_I, E_J R_J) (N/mm), k_lo, k_hi = ContactParams::penaltyMin, penaltyMax.
+// min(E_I R_I, E_J R_J) (N/mm), k_lo, k_hi = the zone's penaltyMin, penaltyMax (its pair
+// class's, docs/SCENE.md; a tool zone's: the contact section's).
 // Why the bounds: eq. 13 alone divides the penalty of a zone with almost no load by beta at every
 // pass (1000x per increment with 3 passes), so a zone that the next increment loads starts from a
 // penalty that no longer bites (a frozen residual, overlaps of many p_max). The floor keeps
@@ -15,8 +16,8 @@
 // at the ceiling with its deepest penetration above p_max costs accuracy: it is counted.
 //
 // adaptZonePenalties      reads ContactParams, ContactElementStore (zone), ContactForceStore
-//                         (gap), ZoneStore (pMax, stiffness); writes ZoneStore::penalty,
-//                         ContactLoopStats (penaltyChange, zonesAtCeiling).
+//                         (gap), ZoneStore (pMax, stiffness, penaltyMin, penaltyMax); writes
+//                         ZoneStore::penalty, ContactLoopStats (penaltyChange, zonesAtCeiling).
 // adaptToolZonePenalties  the same over ToolContactStore (zone) and ToolZoneStore.
 // penaltyChange is the largest |k_new / k_old - 1| of the update. Serial (a pass over elements).
 #pragma once
@@ -38,10 +39,10 @@ void adaptToolZonePenalties(const ContactParams& params, const ToolContactStore&
                             const ContactForceStore& forces, ToolZoneStore& zones,
                             ContactLoopStats& stats);
 
-// The zones' columns the adapter reads and writes: p_max (mm), section stiffness (N/mm),
-// penalties to update (N/mm).
+// The zones' columns the adapter reads and writes: p_max (mm), section stiffness (N/mm), the
+// bounds k_lo, k_hi (multiples of the stiffness), penalties to update (N/mm).
 struct PenaltyZones {
-  std::span<const double> pMax, stiffness;
+  std::span<const double> pMax, stiffness, penaltyMin, penaltyMax;
   std::span<double> penalty;
 };
 

@@ -199,7 +199,8 @@ void writeZones(const ZoneCache& cache, ZoneStore& z) {
       z.previous[at] = -1;
       z.intermediateLength[at] = 0;
       z.firstElement[at] = z.elementCount[at] = 0;
-      z.penalty[at] = z.pMax[at] = z.stiffness[at] = 0;
+      z.penalty[at] = z.pMax[at] = z.friction[at] = z.stiffness[at] = 0;
+      z.penaltyMin[at] = z.penaltyMax[at] = 0;
       ++at;
     }
   });

@@ -1,5 +1,7 @@
 #include "systems/zone_penalty.h"
 
+#include "systems/contact_params.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,7 +15,11 @@ void carryZonePenalties(const FibreStore& fs, const MaterialStore& materials,
     z.stiffness[i] = std::min(ER(z.fibreI[i]), ER(z.fibreJ[i]));
     const double k0 = std::isfinite(p.initialPenalty) ? p.initialPenalty : z.stiffness[i];
     z.penalty[i] = o >= 0 ? previous.penalty[o] : k0;
-    z.pMax[i] = p.pMax;
+    const int c = pairClass(p, z.fibreI[i], z.fibreJ[i]);
+    z.pMax[i] = p.pairs.pMax[c];
+    z.friction[i] = p.pairs.mu[c];
+    z.penaltyMin[i] = p.pairs.penaltyMin[c];
+    z.penaltyMax[i] = p.pairs.penaltyMax[c];
   }
 }
 

@@ -1,12 +1,14 @@
 // Zone penalties carried by zone identity: every zone of a new detection gets the penalty k of
 // the zone it comes from (eq. 13 adapts k from call to call, so a zone keeps what it learned).
 //
-// Reads  FibreStore (radii, materials), MaterialStore (E), ContactParams (p_max, initial k), the
-//        previous call's ZoneStore (penalty), the new zones' `previous`.
-// Writes the new ZoneStore's penalty, pMax and stiffness columns.
+// Reads  FibreStore (radii, materials), MaterialStore (E), ContactParams (initial k, the pair
+//        classes), the previous call's ZoneStore (penalty), the new zones' `previous`.
+// Writes the new ZoneStore's penalty, pMax, friction, penalty bounds and stiffness columns.
 //   k_z = k_previous(z) when the zone matches a previous one (its own id continued, or a part
 //         split off it: systems/zone_identity.h), else k0 = min(E_I R_I, E_J R_J) (or the
-//         scene's initial penalty); p_max,z = p_max; stiffness_z = min(E_I R_I, E_J R_J).
+//         scene's initial penalty); p_max,z, mu_z and the penalty bounds = those of the pair
+//         class of (I, J) (looked
+//         up once per zone: systems/contact_params.h); stiffness_z = min(E_I R_I, E_J R_J).
 // Serial over zones (a copy per zone).
 #pragma once
 

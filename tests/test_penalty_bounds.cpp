@@ -17,10 +17,11 @@ TEST_CASE("the penalty adapter keeps every zone's penalty within its bounds") {
   const std::vector<Index> zoneOf = {0, 1, 1, 2, 3};
   const std::vector<double> gap = {-1e-9, -1.0, -0.5, -0.9 * pMax, 1e-3};
   const std::vector<double> pMaxZ(4, pMax), stiffness(4, ER);
+  std::vector<double> lo(4, p.penaltyMin), hi(4, p.penaltyMax);
   std::vector<double> k = {1000 * ER, 0.9e4 * ER, ER, ER};
   ContactLoopStats stats;
   for (int pass = 0; pass < 6; ++pass)
-    adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, k}, p, stats);
+    adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, lo, hi, k}, p, stats);
   CHECK(k[0] == doctest::Approx(ER));        // 1/10 per pass, stopped at the floor
   CHECK(k[1] == doctest::Approx(1e4 * ER));  // x10 per pass, stopped at the ceiling
   CHECK(stats.zonesAtCeiling == 1);          // and still 1000 p_max deep: counted
@@ -28,9 +29,9 @@ TEST_CASE("the penalty adapter keeps every zone's penalty within its bounds") {
   CHECK(k[3] == ER);                         // no penetration: unchanged
   CHECK(stats.penaltyChange == 0);           // the last pass changed nothing
   // Without the floor, the unloaded zone's penalty falls by 10 per pass.
-  p.penaltyMin = 1e-12;
+  lo.assign(4, 1e-12);
   std::vector<double> free = {ER, ER, ER, ER};
-  adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, free}, p, stats);
-  adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, free}, p, stats);
+  adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, lo, hi, free}, p, stats);
+  adaptPenalties(zoneOf, gap, {pMaxZ, stiffness, lo, hi, free}, p, stats);
   CHECK(free[0] == doctest::Approx(ER / 100));
 }

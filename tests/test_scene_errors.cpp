@@ -90,8 +90,7 @@ TEST_CASE("scene errors: structure — unknown, repeated, missing and mistyped f
         "s.json: boundary_condition: unknown field (did you mean 'boundary_conditions'?)");
   CHECK(errorAfter([](Json& j) { j["fibres"][0]["colour"] = "red"; }) ==
         "s.json: fibres[0].colour: unknown field (known fields: name, material, radius, elements, "
-        "order, "
-        "geometry, integration)");
+        "order, geometry, integration, class, levels)");
   CHECK(errorAfter([](Json& j) { j["fibres"][0]["geometry"]["pitch"] = 1; }) ==
         "s.json: fibres[0].geometry.pitch: unknown field for a line geometry (known fields: type, "
         "points, director)");

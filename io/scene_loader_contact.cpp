@@ -1,0 +1,53 @@
+// Scene loader: the contact classes of the scene file (docs/SCENE.md) - a fibre's level table,
+// a contact pair-class rule, a step's forced normals. Ranges and cross-references (unknown
+// classes, repeated pairs, level order) are checked when the world resolves them
+// (engine/contact_classes.h), so that a SceneDef filled in code gets the same errors.
+#include "io/json_reader.h"
+#include "io/scene_sections.h"
+
+namespace fibra::scene_sections {
+
+using namespace json_reader;
+
+std::vector<LevelDef> readLevels(const Json& j, const std::string& path) {
+  if (j.is_number()) return {{0, asNumber(j, path)}};
+  if (!j.is_array()) fail(path, typeMismatch("a level or a table [[from, level], ...]", j));
+  std::vector<LevelDef> out;
+  forEachItem(j, path, [&](const Json& p, const std::string& at) {
+    if (!p.is_array() || p.size() != 2) fail(at, typeMismatch("a piece [from, level]", p));
+    out.push_back({asNumber(p[0], at + "[0]"), asNumber(p[1], at + "[1]")});
+  });
+  return out;
+}
+
+ContactPairDef readContactPair(const Json& j, const std::string& path) {
+  const Fields f(j, path, {"classes", "friction", "max_penetration", "penalty_min", "penalty_max"});
+  ContactPairDef d;
+  const Json& c = f.at("classes");
+  if (c.is_string()) {
+    const std::string k = asString(c, f.path("classes"));
+    if (k != "within" && k != "between")
+      fail(f.path("classes"), "must be two class names or \"within\" or \"between\", got \"" +
+                                  shown(k) + "\"");
+    d.rule = k == "within" ? PairRule::Within : PairRule::Between;
+  } else {
+    if (!c.is_array() || c.size() != 2)
+      fail(f.path("classes"), typeMismatch("two class names [a, b]", c));
+    d.classes = {asString(c[0], f.path("classes") + "[0]"),
+                 asString(c[1], f.path("classes") + "[1]")};
+  }
+  d.friction = f.number("friction", d.friction);
+  d.maxPenetration = f.number("max_penetration", d.maxPenetration);
+  d.penaltyMin = f.number("penalty_min", d.penaltyMin);
+  d.penaltyMax = f.number("penalty_max", d.penaltyMax);
+  return d;
+}
+
+Vec3 readForcedNormals(const Json& j, const std::string& path) {
+  const Fields f(j, path, {"direction"});
+  const Vec3 d = asVec3(f.at("direction"), f.path("direction"));
+  if (!(d.norm() > 0) || !d.allFinite()) fail(f.path("direction"), "must be a non-zero vector");
+  return d.normalized();
+}
+
+}  // namespace fibra::scene_sections

@@ -1,0 +1,219 @@
+// Contact settings per pair class (docs/SCENE.md, contact `pairs`): two pairs of crossing beams,
+// far apart, of four classes with their own friction and p_max; each pair presses with the same
+// load, then its upper beam is dragged across the lower one. Each pair's deepest penetration
+// sits at its own p_max, and the drag force on its upper beam is its own mu times the normal
+// force (both from the beams' holds, not from the law). The rules' errors name the field.
+#include "contact_scenes.h"
+#include "io/scene_loader.h"
+#include "scene_test_util.h"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+using namespace fibra;
+using namespace fibra::test;
+
+namespace {
+
+constexpr double kLoad = 0.01;  // N at each upper beam's midspan
+
+// Pair k (k = 0, 1): lower beam Ak along x at y = 10 k, upper beam Bk along y over it, touching;
+// classes "ak" and "bk". Step 1 presses each Bk down by kLoad; step 2 drags Bk's ends by
+// 0.05 mm along x.
+SceneDef twoPairs(double mu0, double pMax0, double mu1, double pMax1) {
+  const SceneDef one = crossingBeams(kLoad, 1e-3);
+  SceneDef s;
+  s.materials = one.materials;
+  s.contact = one.contact;
+  s.contact.maxReversibleSlip = 5e-4;
+  const Table drag{{0, 1, 2}, {0, 0, 1}};
+  for (int k = 0; k < 2; ++k) {
+    const std::string a = "A" + std::to_string(k), b = "B" + std::to_string(k);
+    const Vec3 shift(0, 10 * k, 0);
+    for (FibreDef f : one.fibres) {
+      f.name = f.name == "A" ? a : b;
+      for (Vec3& p : f.geometry.points) p += shift;
+      f.contactClass = f.name == a ? "a" + std::to_string(k) : "b" + std::to_string(k);
+      s.fibres.push_back(f);
+    }
+    s.groups.push_back({b + ".mid", b, {10}});
+    hold(s, a + ".start", {X, Y, Z, G1Y});
+    hold(s, a + ".end", {X, Y, Z});
+    hold(s, b + ".start", {X, Y, Z, G1X}, Vec3(0.05, 0, 0), drag);
+    hold(s, b + ".end", {X, Y, Z}, Vec3(0.05, 0, 0), drag);
+    s.loads.push_back({LoadKind::Force, b + ".mid", Vec3(0, 0, -kLoad), {{0, 1, 2}, {0, 1, 1}}});
+  }
+  // The section's penalty floor (penalty_min 1 x E R = 400 N/mm) would hold these light contacts
+  // below p_max: each rule lowers its own, so that each zone's penetration reaches its p_max.
+  ContactPairDef p0, p1;
+  p0.classes = {"a0", "b0"}, p0.friction = mu0, p0.maxPenetration = pMax0, p0.penaltyMin = 1e-2;
+  p1.classes = {"b1", "a1"}, p1.friction = mu1, p1.maxPenetration = pMax1, p1.penaltyMin = 1e-2;
+  s.contact.pairs = {p0, p1};
+  StepDef press, slide;
+  press.increments = 4;
+  slide.endTime = 2;
+  slide.increments = 4;
+  s.steps = {press, slide};
+  return s;
+}
+
+// Deepest penetration of the elements between fibres 2k and 2k + 1, mm.
+double deepest(const World& w, int k) {
+  double d = 0;
+  const ContactElementStore& el = w.contact().elements;
+  for (Index e = 0; e < el.size(); ++e)
+    if (el.fibreI[e] / 2 == k) d = std::max(d, -w.contact().forces.gap[e]);
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("each pair class has its own friction and p_max: penetration and slip force") {
+  const double mu[2] = {0.1, 0.3}, pMax[2] = {1e-4, 4e-4};
+  World w(twoPairs(mu[0], pMax[0], mu[1], pMax[1]));
+  while (w.currentStep() == 0) REQUIRE(w.step().status == StepStatus::Converged);
+  for (int k = 0; k < 2; ++k) {
+    CAPTURE(k);
+    MESSAGE("pair " << k << ": deepest penetration " << deepest(w, k) << " mm, p_max " << pMax[k]);
+    CHECK(deepest(w, k) <= pMax[k]);
+    CHECK(deepest(w, k) >= 0.5 * pMax[k]);
+  }
+  for (const ZoneStore& z = w.contact().zones; Index i : {Index(0), z.size() - 1}) {
+    const int k = int(z.fibreI[i] / 2);
+    CHECK(z.friction[i] == mu[k]);
+    CHECK(z.pMax[i] == pMax[k]);
+    CHECK(z.penaltyMin[i] == 1e-2);
+  }
+  while (!w.finished()) REQUIRE(w.step().status == StepStatus::Converged);
+  for (int k = 0; k < 2; ++k) {
+    CAPTURE(k);
+    // A's holds (bcs 4k, 4k + 1) carry the contact's normal force (A has no other load); B's
+    // holds (4k + 2, 4k + 3) balance, along x, the friction force on B alone.
+    const double normal = std::abs((w.reaction(4 * k).force + w.reaction(4 * k + 1).force).z());
+    const double drag = std::abs((w.reaction(4 * k + 2).force + w.reaction(4 * k + 3).force).x());
+    MESSAGE("pair " << k << ": drag " << drag << " N, normal " << normal << " N, ratio "
+                    << drag / normal << " (mu " << mu[k] << ")");
+    CHECK(normal > 0.4 * kLoad);  // about half the load: B's own supports carry the rest
+    CHECK(std::abs(drag / (mu[k] * normal) - 1) < 0.02);
+  }
+}
+
+TEST_CASE("penalty bounds per pair class: the section's floor holds the other pair shallow") {
+  SceneDef s = twoPairs(0.1, 1e-4, 0.3, 4e-4);
+  s.contact.pairs[1].penaltyMin = std::nan("");  // pair 1 takes the section's floor, 1 x E R
+  s.steps.resize(1);
+  World w(s);
+  while (!w.finished()) REQUIRE(w.step().status == StepStatus::Converged);
+  MESSAGE("deepest penetration: pair 0 " << deepest(w, 0) << " mm, pair 1 " << deepest(w, 1)
+                                         << " mm");
+  CHECK(deepest(w, 0) >= 0.5 * 1e-4);  // its own floor, 1e-2 E R: at its p_max
+  CHECK(deepest(w, 1) < 0.5 * 4e-4);   // held by the section's floor
+  const ZoneStore& z = w.contact().zones;
+  REQUIRE(z.size() == 2);
+  CHECK(z.penaltyMin[1] == 1);
+  CHECK(z.penalty[1] == doctest::Approx(400).epsilon(1e-12));  // E R: at the floor
+  CHECK(z.penalty[0] < 400);
+}
+
+TEST_CASE("keyword pair rules: within and between, a named pair above them") {
+  SceneDef s = twoPairs(0.1, 1e-4, 0.3, 4e-4);
+  s.fibres[1].contactClass = "a0";  // pair 0 within class a0
+  s.contact.pairs[0].classes = {"a0", "a0"};
+  s.contact.pairs[1].friction = std::nan("");  // takes the contact section's
+  ContactPairDef within, between;
+  within.rule = PairRule::Within, within.friction = 0.05;
+  between.rule = PairRule::Between, between.friction = 0.2, between.maxPenetration = 2e-4;
+  between.penaltyMax = 50;
+  s.contact.pairs.push_back(within);
+  s.contact.pairs.push_back(between);
+  s.contact.friction = 0.01;
+  s.steps.resize(1);
+  World w(s);
+  REQUIRE(w.step().status == StepStatus::Converged);
+  const ZoneStore& z = w.contact().zones;
+  REQUIRE(z.size() == 2);
+  CHECK(z.friction[0] == 0.1);   // the named pair (a0, a0) above `within`
+  CHECK(z.pMax[0] == 1e-4);
+  CHECK(z.friction[1] == 0.01);  // the named pair (a1, b1) without friction: the section's
+  CHECK(z.pMax[1] == 4e-4);
+  s.contact.pairs.erase(s.contact.pairs.begin(), s.contact.pairs.begin() + 2);
+  World k(s);
+  REQUIRE(k.step().status == StepStatus::Converged);
+  CHECK(k.contact().zones.friction[0] == 0.05);  // within
+  CHECK(k.contact().zones.friction[1] == 0.2);   // between
+  CHECK(k.contact().zones.pMax[1] == 2e-4);
+  CHECK(k.contact().zones.penaltyMax[1] == 50);
+  CHECK(k.contact().zones.penaltyMax[0] == 1e4);  // the section's
+}
+
+TEST_CASE("pair rules and levels that cannot hold are scene errors naming the field") {
+  const SceneDef base = twoPairs(0.1, 1e-4, 0.3, 4e-4);
+  const auto errorWith = [&](auto change) {
+    SceneDef s = base;
+    change(s);
+    return errorOf([&] { World world(s); });
+  };
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].classes[0] = "c"; }) ==
+        "contact.pairs[1].classes[0]: unknown class 'c' (no fibre has it)");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].classes = {"b0", "a0"}; }) ==
+        "contact.pairs[1].classes: the pair ('b0', 'a0') is given twice");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].classes[1] = ""; }) ==
+        "contact.pairs[0].classes[1]: empty class name (the default class is unnamed)");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].friction = -1; }) ==
+        "contact.pairs[0].friction: must be a finite value >= 0");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].maxPenetration = 0; }) ==
+        "contact.pairs[1].max_penetration: must be a finite value > 0");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].penaltyMin = 0; }) ==
+        "contact.pairs[1].penalty_min: must be a finite value > 0");
+  CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].penaltyMax = 1e-3; }) ==
+        "contact.pairs[0].penalty_max: must be finite and >= penalty_min (0.01)");
+  CHECK(errorWith([](SceneDef& s) {
+          s.contact.pairs[0].rule = s.contact.pairs[1].rule = PairRule::Between;
+        }) == "contact.pairs[1].classes: this keyword rule is given twice");
+  CHECK(errorWith([](SceneDef& s) { s.fibres[2].levels = {{0.5, 1}}; }) ==
+        "fibres[2].levels[0].from: the first piece must start at 0");
+  CHECK(errorWith([](SceneDef& s) { s.fibres[2].levels = {{0, 1}, {1, 0}, {1, 1}}; }) ==
+        "fibres[2].levels[2].from: must exceed the previous piece's start");
+  CHECK(errorWith([](SceneDef& s) {
+          s.contact.enabled = false;
+          s.steps[1].forcedNormal = Vec3::UnitZ();
+        }) == "steps[1].forced_normals: needs fibre contact (a contact section)");
+  CHECK(errorWith([](SceneDef& s) { s.steps[0].forcedNormal = Vec3(0, 0, 2); }) ==
+        "steps[0].forced_normals.direction: must be a finite unit vector");
+}
+
+TEST_CASE("the scene file reads classes, level tables, pair rules and forced normals") {
+  const SceneDef s = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  CHECK(s.fibres[0].contactClass == "warp");
+  REQUIRE(s.fibres[0].levels.size() == 1);
+  CHECK(s.fibres[0].levels[0].level == 1);
+  REQUIRE(s.contact.pairs.size() == 2);
+  CHECK(s.contact.pairs[0].rule == PairRule::Named);
+  CHECK(s.contact.pairs[0].classes[1] == "weft");
+  CHECK(s.contact.pairs[1].rule == PairRule::Within);
+  CHECK(s.steps[0].forcedNormal == Vec3::UnitZ());
+  CHECK(s.steps[1].forcedNormal == Vec3::Zero());
+  const std::string text = R"({"units": "mm-N-MPa",
+    "materials": [{"name": "m", "young_modulus": 1}],
+    "fibres": [{"name": "f", "material": "m", "radius": 0.1, "elements": 2, "class": "y",
+                "levels": [[0, 1], [2, -1]],
+                "geometry": {"type": "line", "points": [[0, 0, 0], [4, 0, 0]]}}],
+    "contact": {"pairs": [{"classes": "across"}]},
+    "steps": [{"forced_normals": {"direction": [0, 0, 1]}}]})";
+  CHECK(errorOf([&] { loadSceneFromString(text, "s.json"); }) ==
+        "s.json: contact.pairs[0].classes: must be two class names or \"within\" or "
+        "\"between\", got \"across\"");
+  nlohmann::json j = nlohmann::json::parse(text);
+  j["contact"]["pairs"][0]["classes"] = "between";
+  j["steps"][0]["forced_normals"]["direction"] = {0, 0, 0};
+  CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
+        "s.json: steps[0].forced_normals.direction: must be a non-zero vector");
+  j["steps"][0]["forced_normals"]["direction"] = {0, 0, -3};
+  const SceneDef r = loadSceneFromString(j.dump(), "s.json");
+  CHECK(r.steps[0].forcedNormal == -Vec3::UnitZ());
+  REQUIRE(r.fibres[0].levels.size() == 2);
+  CHECK(r.fibres[0].levels[1].from == 2);
+  CHECK(r.fibres[0].levels[1].level == -1);
+}

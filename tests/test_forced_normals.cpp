@@ -1,0 +1,277 @@
+// Initial geometry by forced normals (paper section 5.2.1, docs/CONTACT.md): between fibres of
+// different contact classes with different levels, a step with forced_normals sets N = +-D,
+// oriented by the levels. Checks: fibres whose centrelines cross (distance 0) keep their contact
+// elements with the forced orientation and the gap measured along it; the contact tangent under
+// forced normals matches central finite differences (with friction, in stick and in slip); the
+// sample samples/forced_normals.json (two flat interpenetrating yarns) ends its forced step with
+// the over yarn above the other and the centrelines apart by at least R_I + R_J - p_max,
+// measured from the nodes alone, and the step with the normal rules after it converges; a flat
+// 2 x 2 plain weave whose pattern is in the warp fibres' level tables ends its forced step with
+// every crossing in the pattern's order, within p_max; the sample's state hashes the same with
+// 1, 2 and 4 threads.
+#include "contact_scenes.h"
+#include "engine/world_state.h"
+#include "io/scene_loader.h"
+#include "store_bits.h"
+
+#include <doctest/doctest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+
+using namespace fibra;
+using namespace fibra::test;
+
+namespace {
+
+// Two fibres crossing at 90 degrees in the plane z = 0 (centrelines cut at the origin), of
+// classes "a" (level levelA) and "b" (level 0), held at their ends; the first step forces the
+// normals along +z.
+SceneDef cutCrossing(double levelA, double mu) {
+  SceneDef s = crossingBeams(0.01, 1e-3);
+  s.fibres[1].geometry.points = {Vec3(0, -2, 0), Vec3(0, 2, 0)};
+  s.fibres[0].contactClass = "a";
+  s.fibres[1].contactClass = "b";
+  s.fibres[0].levels = {{0, levelA}};
+  s.contact.friction = mu;
+  s.contact.maxReversibleSlip = 5e-4;
+  s.steps[0].forcedNormal = Vec3::UnitZ();
+  return s;
+}
+
+// Detection at the start of the forced step.
+void detectForced(WorldState& w, const SceneDef& s) {
+  w.scene = s;
+  buildWorld(w);
+  w.contact.forcedNormal = s.steps[0].forcedNormal;
+  runStage(w, w.pipeline.detect, 0);
+}
+
+void assembleAt(WorldState& w, bool tangent) { runStage(w, w.pipeline.assemble, 0, tangent); }
+
+// x0(s) of fibre f from its nodes (quadratic Lagrange on each element, equal elements).
+Vec3 centreline(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+  const Index n = fs.elementCount[f];
+  const double h = fs.length[f] / n;
+  const Index e = std::min<Index>(n - 1, Index(s / h));
+  const double xi = 2 * (s - e * h) / h - 1;
+  const Index a = fs.firstNode[f] + 2 * e;
+  return 0.5 * xi * (xi - 1) * x0Of(q, a) + (1 - xi * xi) * x0Of(q, a + 1) +
+         0.5 * xi * (xi + 1) * x0Of(q, a + 2);
+}
+
+struct Closest {
+  double distance;
+  Vec3 fromJtoI;
+};
+
+// Closest approach of the centrelines of I and J within 0.5 mm of sI0 on I and sJ0 on J (mm), by
+// sampling every 5 um, then every 0.05 um within 10 um of the best pair.
+Closest closestApproach(const FibreStore& fs, const Eigen::VectorXd& q, Index I, Index J,
+                        double sI0, double sJ0) {
+  double bestI = sI0, bestJ = sJ0, best = 1e300;
+  for (double step : {5e-3, 5e-5}) {
+    const double cI = bestI, cJ = bestJ, span = step == 5e-3 ? 0.5 : 1e-2;
+    for (double a = std::max(0.0, cI - span); a <= std::min(fs.length[I], cI + span); a += step)
+      for (double b = std::max(0.0, cJ - span); b <= std::min(fs.length[J], cJ + span); b += step) {
+        const double d = (centreline(fs, q, I, a) - centreline(fs, q, J, b)).norm();
+        if (d < best) best = d, bestI = a, bestJ = b;
+      }
+  }
+  return {best, centreline(fs, q, I, bestI) - centreline(fs, q, J, bestJ)};
+}
+
+// A 2 x 2 plain weave of single-fibre yarns, flat: warp i along x at y = -0.5 + i, weft j along
+// y at x = -0.5 + j, all in z = 0, 4 mm long (s = coordinate + 2), R = 0.1 mm. The pattern is in
+// the warp fibres' level tables: warp i lies over weft j where (i + j) is even (level +1 on the
+// piece holding that crossing), under it otherwise (-1); the weft fibres keep level 0. Each
+// fibre is held at its start (and against spin) and pulled at its end by 0.01 N along its axis.
+SceneDef plainWeave() {
+  const int kWeaveElements = 40;
+  SceneDef s;
+  s.materials.push_back({"m", 4000, 0.3, 1, 1});
+  for (int i = 0; i < 2; ++i) {
+    const double c = -0.5 + i;
+    FibreDef warp = straightFibre("warp" + std::to_string(i), Vec3(-2, c, 0), Vec3(2, c, 0), 0.1,
+                                  kWeaveElements, Vec3::UnitZ());
+    warp.contactClass = "warp";
+    const double first = i % 2 == 0 ? 1 : -1;  // at weft 0 (s = 1.5), then the opposite
+    warp.levels = {{0, first}, {2, -first}};
+    FibreDef weft = straightFibre("weft" + std::to_string(i), Vec3(c, -2, 0), Vec3(c, 2, 0), 0.1,
+                                  kWeaveElements, Vec3::UnitZ());
+    weft.contactClass = "weft";
+    s.fibres.push_back(warp);
+    s.fibres.push_back(weft);
+    hold(s, warp.name + ".start", {X, Y, Z, G1Y});
+    hold(s, warp.name + ".end", {Y, Z});
+    hold(s, weft.name + ".start", {X, Y, Z, G1X});
+    hold(s, weft.name + ".end", {X, Z});
+    s.loads.push_back({LoadKind::Force, warp.name + ".end", Vec3(0.01, 0, 0), {{0, 2}, {1, 1}}});
+    s.loads.push_back({LoadKind::Force, weft.name + ".end", Vec3(0, 0.01, 0), {{0, 2}, {1, 1}}});
+  }
+  s.contact.enabled = true;
+  s.contact.maxPenetration = 5e-4;
+  StepDef forced, plain;
+  forced.increments = 4;
+  forced.forcedNormal = Vec3::UnitZ();
+  plain.endTime = 2;
+  s.steps = {forced, plain};
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("centrelines that cut each other keep their contact elements under forced normals") {
+  for (double levelA : {1.0, -1.0}) {
+    CAPTURE(levelA);
+    WorldState w;
+    detectForced(w, cutCrossing(levelA, 0));
+    const ContactElementStore& el = w.trial.elements;
+    REQUIRE(w.trial.zones.size() == 1);  // one zone: the crossing, not dropped
+    REQUIRE(el.size() >= 1);
+    const double R = 0.1;
+    for (Index e = 0; e < el.size(); ++e) {
+      CAPTURE(e);
+      REQUIRE(el.fibreI[e] == 0);  // A is I: N = +z when A's level is the higher
+      CHECK((el.normal[e] - levelA * Vec3::UnitZ()).norm() < 1e-15);
+      // Both centrelines lie in z = 0: the gap along the forced normal is -(R_I + R_J).
+      CHECK(std::abs(el.gap[e] + 2 * R) < 1e-12);
+    }
+    // The normal update of loop B keeps them.
+    runStage(w, w.pipeline.normals, 0);
+    for (Index e = 0; e < el.size(); ++e)
+      CHECK((el.normal[e] - levelA * Vec3::UnitZ()).norm() < 1e-15);
+  }
+}
+
+TEST_CASE("the normal rules come back for equal levels and for fibres of one class") {
+  SceneDef s = cutCrossing(0, 0);  // equal levels
+  s.fibres[1].geometry.points = {Vec3(0, -2, 0.15), Vec3(0, 2, 0.15)};  // B above, penetrating
+  for (bool sameClass : {false, true}) {
+    CAPTURE(sameClass);
+    if (sameClass) s.fibres[0].levels = {{0, 1}}, s.fibres[1].contactClass = "a";
+    WorldState w;
+    detectForced(w, s);
+    const ContactElementStore& el = w.trial.elements;
+    REQUIRE(el.size() >= 1);
+    for (Index e = 0; e < el.size(); ++e)  // eq. 10: from J (B, above) to I (A): -z
+      CHECK((el.normal[e] + Vec3::UnitZ()).norm() < 1e-9);
+  }
+}
+
+TEST_CASE("contact tangent under forced normals matches finite differences, in stick and in slip") {
+  for (double slide : {1e-5, 3e-3}) {
+    CAPTURE(slide);
+    WorldState w;
+    detectForced(w, cutCrossing(1, 0.3));
+    // Lift A part of the way out of B and slide it: penetrating, with friction.
+    for (Index n = w.fibres.firstNode[0]; n < w.fibres.firstNode[0] + w.fibres.nodeCount[0]; ++n)
+      x0Of(w.fibres.q, n) += Vec3(0.3 * slide, slide, 0.2 - 6e-4);
+    assembleAt(w, true);
+    const ContactForceStore& f = w.trial.forces;
+    REQUIRE(f.size() > 0);
+    Index loaded = 0;
+    for (Index e = 0; e < f.size(); ++e) loaded += f.normalForce[e] > 0;
+    REQUIRE(loaded > 0);
+    bool slips = false;
+    for (Index e = 0; e < f.size(); ++e) slips = slips || f.slip[e];
+    CHECK(slips == (slide > 1e-3));
+    const Eigen::MatrixXd K(w.system.K);
+    Eigen::MatrixXd Kfd(w.system.freeCount, w.system.freeCount);
+    const double h = 1e-8;
+    for (Index j = 0; j < w.system.freeCount; ++j) {
+      const Index d = w.system.dofOf[j];
+      w.fibres.q(d) += h;
+      assembleAt(w, false);
+      const Eigen::VectorXd rp = w.system.r;
+      w.fibres.q(d) -= 2 * h;
+      assembleAt(w, false);
+      w.fibres.q(d) += h;
+      for (Index i = 0; i < w.system.freeCount; ++i)
+        Kfd(i, j) = (rp(w.system.dofOf[i]) - w.system.r(w.system.dofOf[i])) / (2 * h);
+    }
+    CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
+  }
+}
+
+TEST_CASE("forced normals push two flat interpenetrating yarns apart, the over yarn on top") {
+  const SceneDef scene = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  World w(scene);
+  const double R = 0.1, pMax = 5e-4;  // the warp-weft pairs take the contact section's p_max
+  int increments = 0;
+  while (w.currentStep() == 0) {
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    ++increments;
+  }
+  CHECK(increments == 4);
+  const FibreStore& fs = w.fibres();
+  double smallest = 1e300;
+  for (Index I = 0; I < 3; ++I)      // warp fibres, along x from x = -2 (s = x + 2)
+    for (Index J = 3; J < 6; ++J) {  // weft fibres, along y from y = -2
+      CAPTURE(I);
+      CAPTURE(J);
+      const double xJ = x0Of(fs.qRef, fs.firstNode[J]).x(), yI = x0Of(fs.qRef, fs.firstNode[I]).y();
+      const Closest c = closestApproach(fs, fs.q, I, J, xJ + 2, yI + 2);
+      CHECK(c.fromJtoI.z() > 0.99 * c.distance);  // the warp fibre lies above, along +z
+      CHECK(c.distance >= 2 * R - pMax);
+      smallest = std::min(smallest, c.distance);
+    }
+  MESSAGE("closest warp-weft centrelines after the forced step: "
+          << smallest << " mm (2R - p_max = " << 2 * R - pMax << ")");
+  const StepReport r = w.step();  // the normal rules
+  REQUIRE(r.status == StepStatus::Converged);
+  CHECK(w.finished());
+  for (Index I = 0; I < 3; ++I)
+    for (Index J = 3; J < 6; ++J) {
+      const double xJ = x0Of(fs.qRef, fs.firstNode[J]).x(), yI = x0Of(fs.qRef, fs.firstNode[I]).y();
+      const Closest c = closestApproach(fs, fs.q, I, J, xJ + 2, yI + 2);
+      CHECK(c.fromJtoI.z() > 0.99 * c.distance);
+      CHECK(c.distance >= 2 * R - 1.5 * pMax);
+    }
+}
+
+TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' level tables") {
+  World w(plainWeave());
+  const FibreStore& fs = w.fibres();
+  const double R = 0.1, pMax = 5e-4;
+  for (int step = 0; step < 2; ++step) {
+    CAPTURE(step);
+    while (w.currentStep() == step) REQUIRE(w.step().status == StepStatus::Converged);
+    double smallest = 1e300;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) {
+        CAPTURE(i);
+        CAPTURE(j);
+        const Index warp = 2 * i, weft = 2 * j + 1;
+        const Closest c = closestApproach(fs, fs.q, warp, weft, 1.5 + j, 1.5 + i);
+        const double over = (i + j) % 2 == 0 ? 1 : -1;  // the pattern: warp over weft
+        // The yarns slope through the crossings: the closest approach is within 25 deg of +-z.
+        CHECK(over * c.fromJtoI.z() > 0.9 * c.distance);
+        smallest = std::min(smallest, c.distance);
+      }
+    MESSAGE("step " << step << ": closest warp-weft centrelines " << smallest << " mm");
+    // Forced normals hold every crossing within p_max. The normal rules after them do not: with
+    // the particles of eq. 9 the paired sections of a sloped crossing do not face each other and
+    // the crossings sink 5.5 um (docs/CONTACT.md, "Forced normals: measured"); checked here only
+    // against a yarn passing through.
+    CHECK(smallest >= 2 * R - (step == 0 ? pMax : 0.02));
+  }
+}
+
+TEST_CASE("the forced-normal sample hashes the same with 1, 2 and 4 threads") {
+  tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 4);
+  const SceneDef scene = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  std::uint64_t reference = 0;
+  for (int threads : {1, 2, 4}) {
+    CAPTURE(threads);
+    World w(scene, {.threads = threads});
+    while (!w.finished()) REQUIRE(w.step().status == StepStatus::Converged);
+    REQUIRE(w.contact().elements.size() > 0);
+    std::uint64_t h = test::hashBits(w.fibres().q);
+    h = test::hashBits(w.residual(), h);
+    h = test::hashBits(w.contact(), h);
+    if (threads == 1) reference = h;
+    CHECK(h == reference);
+  }
+}
