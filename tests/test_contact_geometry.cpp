@@ -86,7 +86,7 @@ TEST_CASE("particles lie on the deformed section outlines, facing the other sect
         ++endFaces;
         continue;
       }
-      CHECK(std::hypot(xi1, xi2) == doctest::Approx(fs.radius[f]).epsilon(1e-12));
+      CHECK(std::hypot(xi1, xi2) == doctest::Approx(fs.radius[f]).epsilon(1e-12).scale(0));
       // the particle x0 + xi1 g1 + xi2 g2 lies in the section plane along the projection of
       // the direction to the other centre (plane normal n = g1 x g2)
       const Vec3 r = xi1 * c.g1 + xi2 * c.g2, n = c.g1.cross(c.g2).normalized();
@@ -146,7 +146,7 @@ TEST_CASE("exactly parallel fibres: one zone along the overlap, zero gaps, centr
   CHECK(d.zones.sI1[0] == 0);
   CHECK(d.zones.sI2[0] == doctest::Approx(1.6));
   CHECK(d.zones.sJ2[0] == doctest::Approx(1.6));
-  CHECK(d.zones.minDistance[0] == doctest::Approx(2 * R));
+  CHECK(d.zones.minDistance[0] == doctest::Approx(2 * R).scale(0));
   CHECK(d.zones.elementCount[0] == 16);  // floor(2 L_int / h) = 2 per element
   REQUIRE(finite(d.el));
   for (Index e = 0; e < d.el.size(); ++e) {
@@ -173,7 +173,7 @@ TEST_CASE("coincident centrelines: full penetration along N from the particles, 
     CHECK((d.el.fallback[e] & (kFallbackParticleI | kFallbackParticleJ | kFallbackNormal)) ==
           (kFallbackParticleI | kFallbackParticleJ | kFallbackNormal));
     CHECK(d.el.normal[e].norm() == doctest::Approx(1));
-    CHECK(d.el.gap[e] == doctest::Approx(-2 * R));
+    CHECK(d.el.gap[e] == doctest::Approx(-2 * R).scale(0));
   }
 }
 
@@ -198,7 +198,7 @@ TEST_CASE("a fibre ending inside a zone: its sections stop at its ends, by the c
       ++ended;
       CHECK((d.el.sJ[e] == 0 || d.el.sJ[e] == doctest::Approx(0.8)));
     } else {
-      CHECK(d.el.gap[e] == doctest::Approx(0.2 * R));
+      CHECK(d.el.gap[e] == doctest::Approx(0.2 * R).scale(0));
     }
   }
   CHECK(ended >= 2);  // both ends
@@ -241,19 +241,19 @@ TEST_CASE("zero-length zone: one proximate test point gives one element at zeta 
   CHECK((d.el.fallback[0] & kFallbackTangent) != 0);
   CHECK(d.el.sI[0] == doctest::Approx(0.6));
   CHECK(d.el.sJ[0] == doctest::Approx(0.6));
-  CHECK(d.el.gap[0] == doctest::Approx(0.95 * R));
+  CHECK(d.el.gap[0] == doctest::Approx(0.95 * R).scale(0));
 }
 
 TEST_CASE("parameter defaults follow the radii and element lengths, given values win") {
   FibreStore fs = pair(fixtures::polylineFibre("a", 0.05, 5, 2, {Vec3(0, 0, 0), Vec3(1, 0, 0)}),
                        fixtures::polylineFibre("b", 0.02, 4, 2, {Vec3(0, 1, 0), Vec3(2, 1, 0)}));
   const ContactParams p = defaults(fs);
-  CHECK(proximityDistance(p, 0, 1) == doctest::Approx(1.5 * (0.05 + 0.02)));
+  CHECK(proximityDistance(p, 0, 1) == doctest::Approx(1.5 * (0.05 + 0.02)).scale(0));
   CHECK(testIntervalsPerElement(fs, p, 0, 1) == 3);  // h = 0.2: l_zp = min(0.1, 0.07) -> 0.2 / 3
   CHECK(testIntervalsPerElement(fs, p, 0, 0) == 2);  // min(0.1, 0.1)
-  CHECK(p.thetaParallel == doctest::Approx(5 * std::numbers::pi / 180));
+  CHECK(p.thetaParallel == doctest::Approx(5 * std::numbers::pi / 180).scale(0));
   CHECK(p.thetaCross == doctest::Approx(20 * std::numbers::pi / 180));
-  CHECK(p.skin == doctest::Approx(0.01));
+  CHECK(p.skin == doctest::Approx(0.01).scale(0));
   CHECK(p.selfSeparation[0] == doctest::Approx(0.3));  // 6 R
   CHECK(p.selfSeparation[1] == doctest::Approx(0.5));  // h = 0.5 > 6 R
   ContactDef def;

@@ -113,10 +113,15 @@ TEST_CASE("a fibre dragged along a roller slides with a tangential force mu R_N"
   const Vec3 onTool = w.toolReaction(0);
   CHECK(last.contact.sliding > 0);
   CHECK(last.contact.sliding == last.contact.active);
-  CHECK(onTool.z() == doctest::Approx(-2 * P).epsilon(0.01));        // the fibre's weight
-  CHECK(onTool.y() == doctest::Approx(mu * 2 * P).epsilon(0.01));    // Coulomb, in slip
+  CHECK(onTool.z() == doctest::Approx(-2 * P).epsilon(0.01).scale(0));        // the fibre's weight
+  CHECK(onTool.y() == doctest::Approx(mu * 2 * P).epsilon(0.01).scale(0));    // Coulomb, in slip
   const double pulled = w.reaction(0).force.y() + w.reaction(1).force.y();
-  CHECK(pulled == doctest::Approx(-onTool.y()).epsilon(0.01));
+  // The holds pull the fibre along +y against the roller's friction, which the fibre passes on
+  // to the roller: pulled = +onTool.y() (Reaction: what the support exerts on the fibre;
+  // toolReaction: what the fibres exert on the tool). This check read -onTool.y() and passed
+  // only because the default scale 1 made its 1% an absolute 0.01 N; measured 0.00402104 N
+  // against 0.00400554 N (0.39%, the stabilisation springs).
+  CHECK(pulled == doctest::Approx(onTool.y()).epsilon(0.01).scale(0));
   CHECK(last.contact.stabilisation < 1e-3);
 }
 

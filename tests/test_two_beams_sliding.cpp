@@ -71,7 +71,7 @@ TEST_CASE("two beams, alternate sliding (paper 5.1): stick, slip at mu R_N, cycl
   const int perLeg = 25;
   double peak = 0;
   for (const Row& r : rows) peak = std::max(peak, std::abs(r.horizontal));
-  CHECK(peak == doctest::Approx(mu * 0.2).epsilon(0.05));
+  CHECK(peak == doctest::Approx(mu * 0.2).epsilon(0.05).scale(0));
   for (int leg = 0; leg < 5; ++leg) {
     CAPTURE(leg);
     const double direction = leg % 2 == 0 ? 1 : -1;  // sign of B's motion, and of its holds' y force
@@ -87,9 +87,9 @@ TEST_CASE("two beams, alternate sliding (paper 5.1): stick, slip at mu R_N, cycl
       const Row& r = rows[leg * perLeg + i];
       CAPTURE(r.time);
       CHECK(r.sliding);
-      CHECK(r.tangential == doctest::Approx(mu * r.normal).epsilon(0.02));
+      CHECK(r.tangential == doctest::Approx(mu * r.normal).epsilon(0.02).scale(0));
       CHECK(direction * r.horizontal > 0);
-      CHECK(std::abs(r.horizontal) == doctest::Approx(mu * r.vertical).epsilon(0.05));
+      CHECK(std::abs(r.horizontal) == doctest::Approx(mu * r.vertical).epsilon(0.05).scale(0));
     }
   }
   // The contact crosses B's element boundary at s = 1.6 mm in every leg (elements of 0.4 mm;
