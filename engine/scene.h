@@ -153,6 +153,9 @@ struct OutputDef {
 // Contact parameters. Detection (paper section 3) and mechanics (section 4). NaN means "derive
 // the default" (docs/SCENE.md gives the rules, which use the radii and element lengths).
 enum class FrictionTangent { Consistent, Symmetrised };
+// Where a line contact's elements sit (docs/CONTACT.md 1.4): Gauss points between both fibres'
+// element ends, weighted (uniform line force), or equally spaced with equal penalties (eq. 7).
+enum class ElementPlacement { Weighted, Paper };
 
 // Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
 // value): friction, p_max and the penalty bounds. A rule names two contact classes (the same
@@ -192,6 +195,7 @@ struct ContactDef {
   FrictionTangent frictionTangent = FrictionTangent::Consistent;
   int maxDetectionLoops = 3;          // n_A: contact elements fixed point
   int maxNormalLoops = 3;             // n_B: normals fixed point
+  ElementPlacement elementPlacement = ElementPlacement::Weighted;
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

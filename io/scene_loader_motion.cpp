@@ -160,7 +160,8 @@ ContactDef readContact(const Json& j, const std::string& path) {
       {"enabled", "proximity_distance", "test_point_spacing", "theta_cross_deg",
        "theta_parallel_deg", "self_contact", "self_contact_separation", "skin", "max_penetration",
        "regularisation", "initial_penalty", "penalty_change", "penalty_min", "penalty_max", "friction", "max_reversible_slip",
-       "friction_tangent", "max_detection_loops", "max_normal_loops", "pairs"});
+       "friction_tangent", "max_detection_loops", "max_normal_loops", "element_placement",
+       "pairs"});
   constexpr double kRad = std::numbers::pi / 180;
   ContactDef c;
   c.enabled = f.boolean("enabled", true);  // a contact section means contact unless it says not
@@ -185,6 +186,10 @@ ContactDef readContact(const Json& j, const std::string& path) {
       c.frictionTangent);
   c.maxDetectionLoops = f.integer("max_detection_loops", c.maxDetectionLoops);
   c.maxNormalLoops = f.integer("max_normal_loops", c.maxNormalLoops);
+  c.elementPlacement = f.choice(
+      "element_placement",
+      {{"weighted", ElementPlacement::Weighted}, {"paper", ElementPlacement::Paper}},
+      c.elementPlacement);
   if (f.has("pairs"))
     forEachItem(f.at("pairs"), f.path("pairs"), [&](const Json& p, const std::string& at) {
       c.pairs.push_back(readContactPair(p, at));

@@ -180,12 +180,19 @@ double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, d
 // element of I and one of J, and a uniform line pressure p gives both fibres the nodal forces of
 // the consistent line load, int N_a p ds, exactly where the sections move affinely with zeta
 // (two-point Gauss is exact for N_a p, p linear, on quadratic elements).
+// With ContactParams::weightedElements off: the paper's eq. 7, Nc equally spaced elements
+// zeta_k = (k - 1) / (Nc - 1), each of length L_int / Nc (equal weights).
 template <class Visit>
-void forEachElementAbscissa(const Intermediate& g, double L, Visit visit) {
+void forEachElementAbscissa(const Intermediate& g, double L, bool weighted, Visit visit) {
   const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
   const double h = std::min(hI, hJ);
-  if (std::floor(2 * L / h) < 2) {
+  const double count = std::floor(2 * L / h);
+  if (count < 2) {
     visit(0.5, L);
+    return;
+  }
+  if (!weighted) {
+    for (int k = 0; k < int(count); ++k) visit(k / (count - 1), L / count);
     return;
   }
   std::vector<double> cuts;
@@ -281,7 +288,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
   double total = 0;
   Index e = first;
-  forEachElementAbscissa(g, zones.intermediateLength[z], [&](double zeta, double length) {
+  forEachElementAbscissa(g, zones.intermediateLength[z], p.weightedElements, [&](double zeta, double length) {
     el.zeta[e] = zeta;
     el.length[e++] = length;
     total += length;
@@ -341,7 +348,7 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
       const double L = intermediateLength(g);
       zones.intermediateLength[z] = L;
       Index count = 0;
-      forEachElementAbscissa(g, L, [&](double, double) { ++count; });
+      forEachElementAbscissa(g, L, params.weightedElements, [&](double, double) { ++count; });
       zones.elementCount[z] = count;
     }
   });
