@@ -1,6 +1,7 @@
 // Scene generators: the dispatch by `type` and the expansion of the `generators` list.
 #include "io/generators.h"
 
+#include "io/fabric_generator.h"
 #include "io/yarn_generator.h"
 
 #include <string>
@@ -19,6 +20,7 @@ struct Generator {
 // Every generator by its `type`.
 constexpr Generator kGenerators[] = {
     {"yarn", expandYarn},
+    {"woven_fabric", expandWovenFabric},
 };
 
 GeneratorExpand generatorOf(const Json& spec, const std::string& path) {

@@ -236,7 +236,7 @@ TEST_CASE("fibra expand: the expanded scene loads to the same fibres and groups 
 TEST_CASE("yarn generator: errors in its fields name generators[i].field") {
   CHECK(errorAfter([](Json&) {}) == "(no error)");
   CHECK(errorAfter([](Json& j) { j["generators"][0]["type"] = "yarm"; }) ==
-        "s.json: generators[0].type: unknown value \"yarm\" (expected one of: yarn)");
+        "s.json: generators[0].type: unknown value \"yarm\" (expected one of: yarn, woven_fabric)");
   CHECK(errorAfter([](Json& j) { j["generators"][0].erase("type"); }) ==
         "s.json: generators[0].type: required field missing");
   CHECK(errorAfter([](Json& j) { j["generators"] = Json::object(); }) ==
