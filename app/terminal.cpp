@@ -81,11 +81,11 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
   if (contact && c.loopCapped) line += "  loop A capped";
   std::fprintf(stderr, "%s  %.3g s\n", line.c_str(), r.timings.total);
   if (r.cutbacks > 0) std::fprintf(stderr, "  cutback: %s\n", r.message.c_str());
-  if (contact && c.maxOverlapRatio > 1.5 * std::max(1.0, c.maxPenetrationRatio))
+  if (contact && c.consistencyPasses > 0)
     std::fprintf(stderr,
-                 "  note: the fibres overlap by %.3g p_max where the contact elements report %.3g "
-                 "p_max: their particles are no longer the closest points (contact.max_overlap)\n",
-                 c.maxOverlapRatio, c.maxPenetrationRatio);
+                 "  note: %d more pass(es) with a new detection at acceptance: the fibres "
+                 "overlapped deeper than the contact elements reported (contact.max_overlap)\n",
+                 c.consistencyPasses);
   if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
     std::fprintf(stderr,
                  "  note: the step ends %.3g of the reference force away from static equilibrium "

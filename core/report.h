@@ -60,6 +60,7 @@ struct ContactReport {
   double redetectGapChange = 0;     // max |g_N new - g_N used| / p_max over paired elements
   double redetectParticleShift = 0; // max particle shift (arc length and section) / R, same
   // detection, in the last attempt
+  int consistencyPasses = 0;   // passes added at acceptance because the set was inconsistent
   int detections = 0;          // detection passes (loop A passes of every attempt)
   int broadphaseRebuilds = 0;  // of them, those that rebuilt the broadphase's candidate set
   int candidatePairs = 0;      // candidate element pairs of the last detection

@@ -1,5 +1,7 @@
 #include "engine/contact_loops.h"
 
+#include "core/format.h"
+
 #include "systems/boundary.h"
 #include "systems/contact_queries.h"
 
@@ -61,6 +63,56 @@ void checkContactSet(WorldState& w, double t, ContactReport& report) {
   w.trial = std::move(used);
 }
 
+// Loop B: Newton with the elements fixed, then the normals at the new state, until they stop
+// turning or n_B passes.
+NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settings,
+                        const NewtonCallbacks& callbacks, StepTimings& timings,
+                        ContactReport& report, NewtonResult nr) {
+  const ContactParams& s = w.contact;
+  for (int b = 1; b <= s.maxNormalLoops; ++b) {
+    ++report.normalLoops;
+    nr = newton(w, settings, callbacks, timings, nr);
+    if (nr.outcome != NewtonOutcome::Converged || b == s.maxNormalLoops) break;
+    runStage(w, w.pipeline.normals, tTry);
+    if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance) break;
+  }
+  return nr;
+}
+
+// The accepted set misses the true contact when the fibres overlap by more than 1.5 x the
+// deepest penetration its elements report (and p_max): the elements' sections are no longer
+// the closest ones (they drifted as the fibres slid or turned).
+bool inconsistent(const ContactReport& r) {
+  return r.maxOverlapRatio > 1.5 * std::max(1.0, r.maxPenetrationRatio);
+}
+
+// Acceptance (fibre-fibre contact): the set is checked against a detection from the converged
+// state (checkContactSet); while it is inconsistent, up to kConsistencyPasses more passes solve
+// with the new detection's elements; still inconsistent, the attempt fails (a cutback), never a
+// silent acceptance.
+constexpr int kConsistencyPasses = 2;
+NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
+                              const NewtonCallbacks& callbacks, StepTimings& timings,
+                              ContactReport& report, NewtonResult nr) {
+  for (int extra = 0;; ++extra) {
+    checkContactSet(w, tTry, report);
+    if (!inconsistent(report)) return nr;
+    if (extra == kConsistencyPasses) {
+      nr.outcome = NewtonOutcome::Failed;
+      nr.message = "inconsistent contact set: the fibres overlap by " +
+                   number(report.maxOverlap) + " mm where the elements report at most " +
+                   number(report.maxPenetration) + " mm, after " +
+                   std::to_string(kConsistencyPasses) + " passes with a new detection";
+      return nr;
+    }
+    if (!detect(w, tTry, report)) return cancelled(nr);
+    ++report.consistencyPasses;
+    nr = normalLoop(w, tTry, settings, callbacks, timings, report, nr);
+    if (nr.outcome != NewtonOutcome::Converged) return nr;
+    fillContactReport(w.contact, w.trial, report);
+  }
+}
+
 }  // namespace
 
 NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSettings& settings,
@@ -77,14 +129,8 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
   applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
   for (int a = 1; a <= s.maxDetectionLoops; ++a) {
     report.detectionLoops = a;
-    for (int b = 1; b <= s.maxNormalLoops; ++b) {
-      ++report.normalLoops;
-      nr = newton(w, settings, callbacks, timings, nr);
-      if (nr.outcome != NewtonOutcome::Converged) return nr;
-      if (b == s.maxNormalLoops) break;
-      runStage(w, w.pipeline.normals, tTry);
-      if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance) break;
-    }
+    nr = normalLoop(w, tTry, settings, callbacks, timings, report, nr);
+    if (nr.outcome != NewtonOutcome::Converged) return nr;
     // The penalties this pass was solved with; the adapted ones serve the next pass only.
     const std::vector<double> zonePenalty = w.trial.zones.penalty;
     const std::vector<double> toolPenalty = w.trial.toolZones.penalty;
@@ -114,8 +160,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
       ++report.restarts;
     }
   }
-  if (s.fibres) checkContactSet(w, tTry, report);
-  return nr;
+  return s.fibres ? acceptContactSet(w, tTry, settings, callbacks, timings, report, nr) : nr;
 }
 
 }  // namespace fibra

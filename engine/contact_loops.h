@@ -24,6 +24,12 @@
 // increment's Newton had to absorb that jump, and the 19-fibre bundle failed at t = 0.48.) The
 // friction history recorded by the adapt stage is kept. The loop's normals are not rolled back:
 // the last update's turn is below the tolerance, and it leaves 1e-5-3e-4 of the reference force.
+// Acceptance (fibre-fibre contact): the set is compared with a detection from the converged
+// state; when the fibres truly overlap (centrelines and radii, end faces against the other's
+// surface) by more than 1.5 x the deepest penetration the elements report (and p_max), the state
+// is solved again with the new detection's elements, at most twice, and the attempt fails (a
+// cutback) if it still is: an inconsistent set is never accepted (ContactReport::
+// consistencyPasses counts the passes added).
 // Newton's steps are limited so that no element closes deeper than stepPenetration p_max in one
 // step (systems/contact_queries.h): without it the first step of an increment that brings fibres
 // into contact overshoots by millimetres and Newton then cycles between contact states.

@@ -57,9 +57,19 @@ double trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Contact
   for (Index e = 0; e < el.size(); ++e) {
     const Section I = contactSection(fs, q, el.fibreI[e], el.sI[e]);
     const Section J = contactSection(fs, q, el.fibreJ[e], el.sJ[e]);
-    const double rI = (el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2).norm();
-    const double rJ = (el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2).norm();
-    overlap = std::max(overlap, rI + rJ - (I.x0 - J.x0).norm());
+    const Vec3 oI = el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2, oJ = el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2;
+    // An end face's point against the other fibre's cylinder: its depth below that surface,
+    // r - |P_t (x - x0)| (the centreline distance says nothing there: the face lies across it).
+    const auto faceDepth = [](const Section& S, double r, const Vec3& x) {
+      const Vec3 t = S.dx0ds.normalized(), d = x - S.x0;
+      return r - (d - d.dot(t) * t).norm();
+    };
+    if (el.fallback[e] & kEndFaceI)
+      overlap = std::max(overlap, faceDepth(J, oJ.norm(), I.x0 + oI));
+    else if (el.fallback[e] & kEndFaceJ)
+      overlap = std::max(overlap, faceDepth(I, oI.norm(), J.x0 + oJ));
+    else
+      overlap = std::max(overlap, oI.norm() + oJ.norm() - (I.x0 - J.x0).norm());
   }
   return overlap;
 }

@@ -16,8 +16,10 @@
 //                     particles re-located on the deformed outlines): max of r_I + r_J - d, d =
 //                     |x0I - x0J| the distance of the section centres, r = |x - x0| the deformed
 //                     radius of each section towards the other (its particle's distance from its
-//                     centre); 0 when none overlaps; mm. Independent of the elements a state was
-//                     solved with: it measures what they may under-report.
+//                     centre); on an end-face element (kEndFaceI/J) the face point's depth
+//                     below the other fibre's surface, r - |P_t (x - x0)|; 0 when none
+//                     overlaps; mm. Independent of the elements a state was solved with: it
+//                     measures what they may under-report.
 // compareContactSets  a detection from the accepted state (`fresh`) against the set the state
 //                     was solved with (`used`): zones paired by id; zones without a partner or
 //                     with another element count are counted; elements of paired zones paired
