@@ -3,10 +3,11 @@
 //
 // Reads  FibreStore (q), ContactParams (p_reg / p_max, g_T,max, symmetrised), ZoneStore
 //        (penalty, p_max and mu per zone: its pair class's), ContactElementStore (particle
-//        weights, normal, friction reference).
+//        weights, element weight w_e, normal, friction reference).
 // Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element).
 // Per element: d = x^I - x^J from the particle weights, the law of systems/contact_law.h with the
-// zone's penalty k, p_reg = (p_reg / p_max) p_max,zone and mu = mu_zone.
+// penalty k_zone w_e (w_e: the element's share of the line, mean 1 over the zone,
+// systems/contact_elements.h), p_reg = (p_reg / p_max) p_max,zone and mu = mu_zone.
 // Threading: parallel over elements, each writing its own entries. Runs beside the beam
 // evaluation and the tool contact law: it writes nothing they read.
 #pragma once

@@ -3,10 +3,11 @@
 //
 // Reads  FibreStore (q), ToolStore (motion, friction), ToolZoneStore (penalty, p_max),
 //        ContactParams (p_reg / p_max, g_T,max, symmetrised), ToolContactStore (particles,
-//        normals, tool points, friction reference), IterationInput (time).
+//        weights, normals, tool points, friction reference), IterationInput (time).
 // Writes ContactForceStore of the tool elements (gap, R_N, force on the fibre, stiffness,
 //        g_rev, slip).
-// Per element: d = x(particle) - M(t) p, the law with the zone's penalty. The force the fibres
+// Per element: d = x(particle) - M(t) p, the law with the zone's penalty times the element's
+// weight (1 lateral, |t . N| on an end face: systems/tool_detection.cpp). The force the fibres
 // exert on a tool is the sum of -force over its elements (World::toolReaction).
 // Threading: parallel over elements, each writing its own entries. Runs beside the beam
 // evaluation and the fibre-fibre contact law.
