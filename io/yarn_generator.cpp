@@ -2,6 +2,7 @@
 // the scene entries they expand into (the formulas are in yarn_generator.h).
 #include "io/yarn_generator.h"
 
+#include "io/generator_fields.h"
 #include "io/generators.h"
 #include "io/seeded_random.h"
 
@@ -15,42 +16,7 @@
 namespace fibra {
 namespace {
 
-using json_reader::Fields;
-using json_reader::Json;
-
-[[noreturn]] void bad(const Fields& f, const char* key, const std::string& what) {
-  json_reader::fail(f.path(key), what);
-}
-
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-double positive(const Fields& f, const char* key) {
-  const double v = f.number(key);
-  if (!(v > 0 && std::isfinite(v))) bad(f, key, "must be > 0, got " + num(v));
-  return v;
-}
-
-int integerIn(const Fields& f, const char* key, int fallback, int min, int max) {
-  const int v = f.integer(key, fallback);
-  if (v < min || v > max)
-    bad(f, key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
-                    std::to_string(v));
-  return v;
-}
-
-void checkName(const Fields& f, const std::string& name) {
-  if (name.empty()) bad(f, "name", "must not be empty");
-  for (char c : name) {
-    if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') continue;
-    std::string what(1, '\'');
-    what.append(json_reader::shown(name)).append("' contains '").push_back(c);
-    bad(f, "name", what.append("'; names use letters, digits, '_', '-' and '.'"));
-  }
-}
+using namespace generator_fields;
 
 YarnPerturbation readPerturbation(const Json& j, const std::string& path, const YarnDef& y) {
   const Fields f(j, path, {"amplitude", "modes", "min_wavelength", "seed"});
