@@ -85,6 +85,7 @@ WeaveDirection readDirection(const Fields& parent, const char* key) {
   if (!(d.gap >= 0 && std::isfinite(d.gap))) bad(f, "gap", "must be >= 0, got " + num(d.gap));
   d.material = f.string("material");
   d.elements = integerIn(f, "elements", 0, 1, 100000);
+  checkElementCount(f, double(d.yarns) * d.fibresPerYarn, d.elements);
   d.order = f.integer("order", d.order);
   if (d.order != 1 && d.order != 2)
     bad(f, "order", "must be 1 or 2, got " + std::to_string(d.order));

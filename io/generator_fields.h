@@ -52,4 +52,17 @@ inline void checkName(const Fields& f, const std::string& name) {
   }
 }
 
+// A generator makes at most this many beam elements (the paper's largest scene, the woven
+// fabric, has 480 x 40 = 19 200): a size error before anything is allocated.
+constexpr double kMaxGeneratedElements = 1e6;
+
+// `elements` (the key that sets the count per fibre) when fibres x elements exceeds the limit.
+inline void checkElementCount(const Fields& f, double fibres, int elements) {
+  if (fibres * elements > kMaxGeneratedElements)
+    bad(f, "elements",
+        num(fibres) + " fibres x " + std::to_string(elements) + " elements = " +
+            num(fibres * elements) + " beam elements, more than a generator makes (" +
+            num(kMaxGeneratedElements) + ")");
+}
+
 }  // namespace fibra::generator_fields

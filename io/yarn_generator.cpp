@@ -58,6 +58,7 @@ YarnDef readYarn(const Json& spec, const std::string& path) {
   if (!(y.gap >= 0 && std::isfinite(y.gap))) bad(f, "gap", "must be >= 0, got " + num(y.gap));
   y.length = positive(f, "length");
   y.elements = integerIn(f, "elements", 0, 1, 100000);
+  checkElementCount(f, y.fibres, y.elements);
   y.order = f.integer("order", y.order);
   if (y.order != 1 && y.order != 2)
     bad(f, "order", "must be 1 or 2, got " + std::to_string(y.order));
