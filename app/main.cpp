@@ -27,6 +27,7 @@
 #include "io/outputs.h"
 #include "io/scene_loader.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -206,6 +207,12 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
       continue;
     }
     if (r.status == StepStatus::Finished) break;
+    // The failed or cancelled increment's attempts count too; a failure's last attempt is the
+    // failure, not a cutback.
+    iterations += r.totalIterations;
+    cutbacks += r.status == StepStatus::Failed
+                    ? std::min(r.cutbacks, scene.steps[size_t(r.step)].maxCutbacks)
+                    : r.cutbacks;
     outputs.finish(world);
     if (r.status == StepStatus::Cancelled) {
       const int signal = stopSignal.load();

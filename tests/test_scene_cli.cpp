@@ -248,6 +248,10 @@ TEST_CASE("fibra: a failing increment exits 1 and writes the last converged stat
   CHECK(r.output.find("fibra: step 1/1, increment 1 failed: ") != std::string::npos);
   CHECK(r.output.find("fibra: failed, wrote the last converged state: t = 0,") !=
         std::string::npos);
+  // The summary counts the failed increment's iterations (2) and no cutback (its only attempt
+  // was the failure).
+  CHECK(r.output.find("t = 0, 0 increments, 2 Newton iterations, 0 cutbacks,") !=
+        std::string::npos);
   CHECK(readCsv(out + "/history.csv").size() == 1);   // the header: no increment converged
   CHECK(pvdFrames(out + "/result.pvd").size() == 1);  // the initial state, once
   const auto tip = stateRow(out + "/final_state.csv", "beam", 20);
