@@ -3,6 +3,7 @@
 // uniformly; regenerating the contact elements without motion leaves the forces unchanged.
 #include "contact_scenes.h"
 #include "engine/world_state.h"
+#include "fd_tangent.h"
 #include "systems/friction_history.h"
 
 #include "systems/contact_queries.h"
@@ -98,19 +99,7 @@ TEST_CASE("fibre contact tangent matches finite differences, in stick and in sli
     REQUIRE(f.normalForce[0] > 0);
     CHECK(bool(f.slip[0]) == (slide > 1e-3));
     const Eigen::MatrixXd K(w.system.K);
-    Eigen::MatrixXd Kfd(w.system.freeCount, w.system.freeCount);
-    const double h = 1e-8;
-    for (Index j = 0; j < w.system.freeCount; ++j) {
-      const Index d = w.system.dofOf[j];
-      w.fibres.q(d) += h;
-      assembleAt(w, false);
-      const Eigen::VectorXd rp = w.system.r;
-      w.fibres.q(d) -= 2 * h;
-      assembleAt(w, false);
-      w.fibres.q(d) += h;
-      for (Index i = 0; i < w.system.freeCount; ++i)
-        Kfd(i, j) = (rp(w.system.dofOf[i]) - w.system.r(w.system.dofOf[i])) / (2 * h);
-    }
+    const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
     CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
   }
 }

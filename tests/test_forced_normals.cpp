@@ -11,6 +11,7 @@
 // 1, 2 and 4 threads.
 #include "contact_scenes.h"
 #include "engine/world_state.h"
+#include "fd_tangent.h"
 #include "io/scene_loader.h"
 #include "store_bits.h"
 
@@ -177,19 +178,7 @@ TEST_CASE("contact tangent under forced normals matches finite differences, in s
     for (Index e = 0; e < f.size(); ++e) slips = slips || f.slip[e];
     CHECK(slips == (slide > 1e-3));
     const Eigen::MatrixXd K(w.system.K);
-    Eigen::MatrixXd Kfd(w.system.freeCount, w.system.freeCount);
-    const double h = 1e-8;
-    for (Index j = 0; j < w.system.freeCount; ++j) {
-      const Index d = w.system.dofOf[j];
-      w.fibres.q(d) += h;
-      assembleAt(w, false);
-      const Eigen::VectorXd rp = w.system.r;
-      w.fibres.q(d) -= 2 * h;
-      assembleAt(w, false);
-      w.fibres.q(d) += h;
-      for (Index i = 0; i < w.system.freeCount; ++i)
-        Kfd(i, j) = (rp(w.system.dofOf[i]) - w.system.r(w.system.dofOf[i])) / (2 * h);
-    }
+    const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
     CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
   }
 }

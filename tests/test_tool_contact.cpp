@@ -4,6 +4,7 @@
 #include "beam_fixtures.h"
 #include "engine/contact_loops.h"
 #include "engine/world_state.h"
+#include "fd_tangent.h"
 #include "systems/tool_contact.h"
 
 #include <doctest/doctest.h>
@@ -85,19 +86,7 @@ TEST_CASE("assembled tangent with frictional tool contact matches finite differe
     CHECK((sliding > 0) == slip);
     REQUIRE_FALSE(w.system.symmetric);
     const Eigen::MatrixXd K(w.system.K);
-    Eigen::MatrixXd Kfd(w.system.freeCount, w.system.freeCount);
-    const double h = 1e-8;
-    for (Index j = 0; j < w.system.freeCount; ++j) {
-      const Index d = w.system.dofOf[j];
-      w.fibres.q(d) += h;
-      assemble(false);
-      const Eigen::VectorXd rp = w.system.r;
-      w.fibres.q(d) -= 2 * h;
-      assemble(false);
-      w.fibres.q(d) += h;
-      for (Index i = 0; i < w.system.freeCount; ++i)
-        Kfd(i, j) = (rp(w.system.dofOf[i]) - w.system.r(w.system.dofOf[i])) / (2 * h);
-    }
+    const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
     CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
   }
 }
