@@ -8,6 +8,7 @@
 //   - a fibre dragged along a parallel held one with friction: the friction work is
 //     -integral mu q(t) L dx (Coulomb sliding over the imposed displacement), the supports'
 //     work (the drag) pays for it.
+#include "dragged_fibre.h"
 #include "engine/world.h"
 #include "io/scene_loader.h"
 
@@ -24,8 +25,10 @@ namespace {
 const char* kMaterial = R"("units": "mm-N-MPa",
     "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],)";
 
-EnergyBalance solve(const std::string& text, double* largestNormalWork = nullptr) {
-  World w(loadSceneFromString(text, "energy.json"));
+SceneDef load(const std::string& text) { return loadSceneFromString(text, "energy.json"); }
+
+EnergyBalance solve(const SceneDef& scene, double* largestNormalWork = nullptr) {
+  World w(scene);
   EnergyBalance e;
   while (!w.finished()) {
     const StepReport r = w.step();
@@ -66,30 +69,10 @@ std::string pressedAndReleased() {
     "steps": [{"end_time": 2, "increments": 20}]})";
 }
 
-// B (L = 3 mm) under a line load q(t) = 0.05 min(t / 0.2, 1) N/mm on a held fibre A, its ends
-// dragged 0.3 t mm along the axis, mu = 0.2.
-std::string dragged() {
-  return std::string("{") + kMaterial + R"(
-    "fibres": [
-      {"name": "A", "material": "m", "radius": 0.1, "elements": 20,
-       "geometry": {"type": "line", "points": [[-3, 0, 0], [3, 0, 0]], "director": [0, 0, 1]}},
-      {"name": "B", "material": "m", "radius": 0.1, "elements": 10,
-       "geometry": {"type": "line", "points": [[-1.5, 0, 0.2], [1.5, 0, 0.2]], "director": [0, 0, 1]}}],
-    "boundary_conditions": [
-      {"type": "clamp", "group": "A.all"},
-      {"type": "fix", "group": "B.start", "dofs": ["x", "y", "g1y"], "displacement": [0.3, 0, 0]},
-      {"type": "fix", "group": "B.end", "dofs": ["y"]}],
-    "loads": [{"type": "line_force", "group": "B.all", "vector": [0, 0, -0.05],
-               "table": [[0, 0], [0.2, 1], [1, 1]]}],
-    "contact": {"max_reversible_slip": 0.0005, "max_penetration": 0.0005, "friction": 0.2},
-    "stabilisation": {"stiffness": 1e-6, "fibres": ["B"]},
-    "steps": [{"end_time": 1, "increments": 20}]})";
-}
-
 }  // namespace
 
 TEST_CASE("energy balance: a cantilever's strain energy is the work of its load, to second order") {
-  const EnergyBalance coarse = solve(cantilever(10)), fine = solve(cantilever(20));
+  const EnergyBalance coarse = solve(load(cantilever(10))), fine = solve(load(cantilever(20)));
   CHECK(coarse.strain > 0);
   CHECK(coarse.external == doctest::Approx(coarse.strain).epsilon(0.01).scale(0));
   CHECK(coarse.supports == 0);  // held DOFs that do not move do no work
@@ -99,7 +82,7 @@ TEST_CASE("energy balance: a cantilever's strain energy is the work of its load,
 
 TEST_CASE("energy balance: frictionless normal forces do no net work over a load cycle") {
   double largest = 0;
-  const EnergyBalance e = solve(pressedAndReleased(), &largest);
+  const EnergyBalance e = solve(load(pressedAndReleased()), &largest);
   CHECK(largest > 1e-5);  // the contact stored energy on the way
   CHECK(std::abs(e.contactNormal) < 1e-3 * largest);
   CHECK(std::abs(e.external) < 1e-3 * largest);
@@ -108,7 +91,7 @@ TEST_CASE("energy balance: frictionless normal forces do no net work over a load
 }
 
 TEST_CASE("energy balance: friction dissipates mu q L per unit of slip, paid by the drag") {
-  const EnergyBalance e = solve(dragged());
+  const EnergyBalance e = solve(test::draggedFibre(0.2));
   // -int_0^1 mu L q(t) 0.3 dt, q = 0.05 min(t / 0.2, 1): 0.2 x 3 x 0.05 x 0.3 x (0.1 + 0.8)
   const double coulomb = -0.2 * 3 * 0.05 * 0.3 * 0.9;
   CHECK(e.friction == doctest::Approx(coulomb).epsilon(0.01).scale(0));

@@ -7,8 +7,8 @@
 // share aside). With the sections' centre-to-centre normal of before the drag was 0.02626 N
 // (-12.5%) and no element slid at 0.015 mm per increment; at 0.03 mm per increment the fault
 // did not show, so the test keeps the finer increments.
+#include "dragged_fibre.h"
 #include "engine/world.h"
-#include "io/scene_loader.h"
 
 #include <doctest/doctest.h>
 
@@ -17,34 +17,9 @@
 
 using namespace fibra;
 
-namespace {
-
-constexpr double kQ = 0.05, kL = 3;  // line load, N/mm; B's length, mm
-
-SceneDef draggedFibre(double mu) {
-  std::string text = R"({
-    "units": "mm-N-MPa",
-    "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
-    "fibres": [
-      {"name": "A", "material": "m", "radius": 0.1, "elements": 20,
-       "geometry": {"type": "line", "points": [[-3, 0, 0], [3, 0, 0]], "director": [0, 0, 1]}},
-      {"name": "B", "material": "m", "radius": 0.1, "elements": 10,
-       "geometry": {"type": "line", "points": [[-1.5, 0, 0.2], [1.5, 0, 0.2]], "director": [0, 0, 1]}}],
-    "boundary_conditions": [
-      {"type": "clamp", "group": "A.all"},
-      {"type": "fix", "group": "B.start", "dofs": ["x", "y", "g1y"], "displacement": [0.3, 0, 0]},
-      {"type": "fix", "group": "B.end", "dofs": ["y"]}],
-    "loads": [{"type": "line_force", "group": "B.all", "vector": [0, 0, -0.05],
-               "table": [[0, 0], [0.2, 1], [1, 1]]}],
-    "contact": {"max_reversible_slip": 0.0005, "max_penetration": 0.0005, "friction": )";
-  text += std::to_string(mu);
-  text += R"(},
-    "stabilisation": {"stiffness": 1e-6, "fibres": ["B"]},
-    "steps": [{"end_time": 1, "increments": 20}]})";
-  return loadSceneFromString(text, "dragged.json");
-}
-
-}  // namespace
+using test::draggedFibre;
+using test::kQ;
+using test::kL;
 
 TEST_CASE("a fibre dragged along a parallel one slides at mu q L with every loaded element sliding") {
   World w(draggedFibre(0.2));
