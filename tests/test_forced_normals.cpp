@@ -9,6 +9,7 @@
 // 2 x 2 plain weave whose pattern is in the warp fibres' level tables ends its forced step with
 // every crossing in the pattern's order, within p_max; the sample's state hashes the same with
 // 1, 2 and 4 threads.
+#include "centreline_measure.h"
 #include "contact_scenes.h"
 #include "engine/world_state.h"
 #include "fd_tangent.h"
@@ -50,37 +51,9 @@ void detectForced(WorldState& w, const SceneDef& s) {
 
 void assembleAt(WorldState& w, bool tangent) { runStage(w, w.pipeline.assemble, 0, tangent); }
 
-// x0(s) of fibre f from its nodes (quadratic Lagrange on each element, equal elements).
-Vec3 centreline(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
-  const Index n = fs.elementCount[f];
-  const double h = fs.length[f] / n;
-  const Index e = std::min<Index>(n - 1, Index(s / h));
-  const double xi = 2 * (s - e * h) / h - 1;
-  const Index a = fs.firstNode[f] + 2 * e;
-  return 0.5 * xi * (xi - 1) * x0Of(q, a) + (1 - xi * xi) * x0Of(q, a + 1) +
-         0.5 * xi * (xi + 1) * x0Of(q, a + 2);
-}
-
-struct Closest {
-  double distance;
-  Vec3 fromJtoI;
-};
-
-// Closest approach of the centrelines of I and J within 0.5 mm of sI0 on I and sJ0 on J (mm), by
-// sampling every 5 um, then every 0.05 um within 10 um of the best pair.
-Closest closestApproach(const FibreStore& fs, const Eigen::VectorXd& q, Index I, Index J,
-                        double sI0, double sJ0) {
-  double bestI = sI0, bestJ = sJ0, best = 1e300;
-  for (double step : {5e-3, 5e-5}) {
-    const double cI = bestI, cJ = bestJ, span = step == 5e-3 ? 0.5 : 1e-2;
-    for (double a = std::max(0.0, cI - span); a <= std::min(fs.length[I], cI + span); a += step)
-      for (double b = std::max(0.0, cJ - span); b <= std::min(fs.length[J], cJ + span); b += step) {
-        const double d = (centreline(fs, q, I, a) - centreline(fs, q, J, b)).norm();
-        if (d < best) best = d, bestI = a, bestJ = b;
-      }
-  }
-  return {best, centreline(fs, q, I, bestI) - centreline(fs, q, J, bestJ)};
-}
+using test::centreline;
+using test::Closest;
+using test::closestApproach;
 
 // A 2 x 2 plain weave of single-fibre yarns, flat: warp i along x at y = -0.5 + i, weft j along
 // y at x = -0.5 + j, all in z = 0, 4 mm long (s = coordinate + 2), R = 0.1 mm. The pattern is in
