@@ -3,12 +3,16 @@
 // between two plane tools in 10 increments, or pulled to 0.1% strain and twisted 90 degrees
 // under that tension in 10 increments; mu and p_max swept. Per run: the pseudo-time reached,
 // converged increments, their Newton iterations (all attempts; mean and max) and cutbacks (a
-// failed increment's are given with its message), wall time
+// failed increment's are given with its message), the largest viscous force of the continuation
+// (relative to the reference force: how far from static equilibrium; 0 without --damping), the
+// most stick/slip statuses held in an increment, wall time
 // and its share per part (assembly, factorisation, solve, the rest: detection, normals,
 // penalties, set-up). One markdown table row per run, as docs/RESULTS.md shows them.
 //
 //   build/bench_bundles [--rings 1,2,3,4] [--load squeeze,twist] [--mu 0.1,0.3]
 //                       [--pmax 5e-4,1e-4] [--elements N] [--threads N] [--line-search on|off]
+//                       [--damping C]  (viscous continuation on every step, StepDef::damping)
+//                       [--hold-after N]  (contact.friction_hold_after; 0: statuses never held)
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -40,6 +44,8 @@ struct Outcome {
   double reached = 0, end = 0;
   int increments = 0, iterations = 0, maxIterations = 0, cutbacks = 0;  // converged increments
   double wall = 0, assemble = 0, factorise = 0, solve = 0;
+  double viscous = 0;  // largest viscous force / reference force of a converged increment
+  int held = 0;        // most elements with a held stick/slip status in an increment
   std::string failure;
 };
 
@@ -61,6 +67,8 @@ Outcome run(const SceneDef& scene, const WorldDef& def) {
       o.iterations += r.totalIterations;
       o.cutbacks += r.cutbacks;
       o.maxIterations = std::max(o.maxIterations, r.totalIterations);
+      o.viscous = std::max(o.viscous, r.viscousForce);
+      o.held = std::max(o.held, r.contact.frictionHeld);
     }
     o.reached = w.time();
   });
@@ -71,11 +79,11 @@ void printRow(const char* load, size_t fibres, int elements, double mu, double p
               const Outcome& o) {
   const double other = o.wall - o.assemble - o.factorise - o.solve;
   const auto share = [&](double x) { return 100 * x / o.wall; };
-  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
+  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1e | %d | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
               load, fibres, elements, mu, pMax,
               o.failure.empty() ? "yes" : ("no, t = " + std::to_string(o.reached)).c_str(),
               o.increments, o.increments ? double(o.iterations) / o.increments : 0.0,
-              o.maxIterations, o.cutbacks, o.wall, share(o.assemble), share(o.factorise),
+              o.maxIterations, o.cutbacks, o.viscous, o.held, o.wall, share(o.assemble), share(o.factorise),
               share(o.solve), share(other));
   if (!o.failure.empty()) std::printf("  failure: %s\n", o.failure.c_str());
 }
@@ -87,6 +95,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> loads{"squeeze", "twist"};
   int elements = 10;
   bool lineSearch = false;
+  double damping = 0;
+  int holdAfter = ContactDef{}.frictionHoldAfter;
   WorldDef def;
   def.threads = 2;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -97,19 +107,24 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--elements")) elements = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--threads")) def.threads = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--line-search")) lineSearch = !std::strcmp(argv[i + 1], "on");
+    if (!std::strcmp(argv[i], "--damping")) damping = std::atof(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--hold-after")) holdAfter = std::atoi(argv[i + 1]);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::printf("threads %d, line search %s\n\n", def.threads, lineSearch ? "on" : "off");
+  std::printf("threads %d, line search %s, damping %g, friction_hold_after %d\n\n", def.threads,
+              lineSearch ? "on" : "off", damping, holdAfter);
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
-              "per increment, mean / max | cutbacks | wall s | %% asm / fac / sol / other |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+              "per increment, mean / max | cutbacks | viscous force, max | held statuses, max | "
+              "wall s | %% asm / fac / sol / other |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (double r : rings)
     for (const std::string& load : loads)
       for (double mu : mus)
         for (double p : pMaxes) {
           SceneDef s = load == "twist" ? scenes::twistedBundle(int(r), elements, p, mu)
                                        : scenes::bundle(int(r), elements, 0.01, p, mu);
-          for (StepDef& st : s.steps) st.lineSearch = lineSearch;
+          for (StepDef& st : s.steps) st.lineSearch = lineSearch, st.damping = damping;
+          s.contact.frictionHoldAfter = holdAfter;
           printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
         }
 }

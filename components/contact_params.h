@@ -75,6 +75,10 @@ struct ContactParams {
                                 // ZoneStore::friction; tools: ToolStore)
   double gMax = 0;              // reversible slip g_T,max, mm
   bool symmetrised = false;     // friction tangent without its non-symmetric part
+  int frictionFlips = 2;        // branch changes of an element within a Newton pass before its
+                                // stick/slip status is held for the pass (0: never held)
+  double frictionTolerance = 0.01;  // a held status is consistent within this relative distance
+                                    // of the slip circle |t| = g_T,max (systems/friction_status.h)
   bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
                                 // systems/tool_detection.h)

@@ -8,6 +8,7 @@
 #include "components/contact.h"
 #include "components/contact_forces.h"
 #include "components/friction_history.h"
+#include "components/friction_status.h"
 #include "components/tools.h"
 
 namespace fibra {
@@ -17,10 +18,12 @@ struct ContactState {
   ZoneStore zones;               // proximity zones, their identities and penalties
   ContactElementStore elements;  // contact elements: particles, normals, friction reference
   ContactForceStore forces;      // their forces at the last evaluation
+  FrictionStatusStore frictionStatus;  // their stick/slip status within the Newton pass
   // fibre-tool
   ToolZoneStore toolZones;       // per (tool, fibre): penalty
   ToolContactStore toolElements; // contact elements with the tools
   ContactForceStore toolForces;  // their forces at the last evaluation
+  FrictionStatusStore toolFrictionStatus;  // their stick/slip status within the Newton pass
   // both
   FrictionHistoryStore history;  // reversible slips on the fibres, at the last loop A pass
 };

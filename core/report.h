@@ -50,6 +50,11 @@ struct ContactReport {
   double maxPenetration = 0;   // over all elements, mm
   double maxPenetrationRatio = 0;  // max over zones of penetration / p_max
   double stabilisation = 0;    // |stabilisation forces| / F_ref at convergence
+  int frictionHeld = 0;        // elements whose stick/slip status was held in the last pass
+                               // (systems/friction_status.h)
+  double frictionExcess = 0;   // largest relative distance of a held element past the slip
+                               // circle on the wrong side for its branch (friction force error
+                               // <= this x mu R_N); 0 when every held status is consistent
   // the contact set at acceptance, against a detection from the accepted state
   // (engine/contact_loops.h, systems/contact_queries.h)
   bool loopCapped = false;     // loop A stopped at its cap without meeting its exit test

@@ -4,6 +4,7 @@
 
 #include "systems/boundary.h"
 #include "systems/contact_queries.h"
+#include "systems/friction_status.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,6 +35,8 @@ NewtonResult cancelled(NewtonResult nr) {
 // (during the detection, or when asked right after it).
 bool detect(WorldState& w, double t, ContactReport& report) {
   runStage(w, w.pipeline.detect, t);
+  clearFrictionStatus(w.trial.frictionStatus);
+  clearFrictionStatus(w.trial.toolFrictionStatus);
   ++report.detections;
   report.broadphaseRebuilds += w.contact.fibres && w.cache.broadphase.rebuilt;
   report.candidatePairs = Index(w.cache.broadphase.candidate.size());
@@ -44,6 +47,8 @@ bool detect(WorldState& w, double t, ContactReport& report) {
 // previous passes', the longest pass kept.
 NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonCallbacks& callbacks,
                     StepTimings& timings, const NewtonResult& before) {
+  openFrictionPass(w.trial.frictionStatus);
+  openFrictionPass(w.trial.toolFrictionStatus);
   NewtonResult nr = solveNewton(w.fibres.q, w.system, w.solver, settings, callbacks, timings);
   nr.iterations += before.iterations;
   nr.longestPass = std::max(nr.longestPass, before.longestPass);
@@ -63,6 +68,19 @@ void checkContactSet(WorldState& w, double t, ContactReport& report) {
   w.trial = std::move(used);
 }
 
+// End of a converged pass: the held stick/slip statuses checked (systems/friction_status.h);
+// the report keeps the held count and the excess of the pass just solved; returns how many
+// statuses were switched for the next pass.
+Index settleFriction(WorldState& w, ContactReport& report) {
+  const HeldFriction f = heldFriction(w.trial.frictionStatus);
+  const HeldFriction t = heldFriction(w.trial.toolFrictionStatus);
+  report.frictionHeld = f.held + t.held;
+  report.frictionExcess = std::max(f.excess, t.excess);
+  const double tol = w.contact.frictionTolerance;
+  return settleFrictionStatus(w.trial.frictionStatus, tol) +
+         settleFrictionStatus(w.trial.toolFrictionStatus, tol);
+}
+
 // Loop B: Newton with the elements fixed, then the normals at the new state, until they stop
 // turning or n_B passes.
 NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settings,
@@ -72,9 +90,12 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
   for (int b = 1; b <= s.maxNormalLoops; ++b) {
     ++report.normalLoops;
     nr = newton(w, settings, callbacks, timings, nr);
-    if (nr.outcome != NewtonOutcome::Converged || b == s.maxNormalLoops) break;
+    if (nr.outcome != NewtonOutcome::Converged) break;
+    const Index switched = settleFriction(w, report);
+    if (b == s.maxNormalLoops) break;
     runStage(w, w.pipeline.normals, tTry);
-    if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance) break;
+    if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance && switched == 0)
+      break;
   }
   return nr;
 }

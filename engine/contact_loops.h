@@ -5,12 +5,15 @@
 //          state, give them the friction history of their particles          [stage detect]
 //     loop B (fixed point, <= n_B):
 //       Newton-Raphson: beam strains, contact and sliding status (elements
-//       and normals fixed)                                                    [stage assemble]
+//       and normals fixed; an element whose stick/slip branch keeps changing
+//       is held in it for the pass)                                           [stage assemble]
+//       held branches checked against the slip circle (systems/friction_status.h)
 //       normals at the new state                                             [stage normals]
 //     adapt the penalty of every zone towards p_max (eq. 13), record the
 //     friction history                                                        [stage adapt]
 //
-// Loop B stops early when no normal turned by more than 1e-3 rad; loop A when the fibres moved
+// Loop B stops early when no normal turned by more than 1e-3 rad and no held branch was found on
+// the wrong side of the slip circle (beyond contact.friction_hold_tolerance); loop A when the fibres moved
 // less than 1e-3 R since its elements were detected (a new detection would find the same set)
 // and no penalty changed by more than 10%. The reference state of loop A's first pass is the last
 // converged state; of the next passes, the state the previous pass converged to — unless that

@@ -1,5 +1,7 @@
 #include "engine/contact_setup.h"
 
+#include "core/format.h"
+
 #include "engine/contact_classes.h"
 
 #include <algorithm>
@@ -76,6 +78,14 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.gMax = std::isfinite(def.maxReversibleSlip) ? def.maxReversibleSlip : 0.005 * R;
   p.symmetrised = def.frictionTangent == FrictionTangent::Symmetrised;
   p.weightedElements = def.elementPlacement == ElementPlacement::Weighted;
+  if (def.frictionHoldAfter < 0 || def.frictionHoldAfter > 255)
+    throw SceneError("contact.friction_hold_after: must be in [0, 255], got " +
+                     std::to_string(def.frictionHoldAfter));
+  if (!(def.frictionHoldTolerance > 0 && def.frictionHoldTolerance <= 1))
+    throw SceneError("contact.friction_hold_tolerance: must be in (0, 1], got " +
+                     number(def.frictionHoldTolerance));
+  p.frictionFlips = def.frictionHoldAfter;
+  p.frictionTolerance = def.frictionHoldTolerance;
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h
   p.initialPenalty = def.initialPenalty;
   p.penaltyChange = def.penaltyChange;

@@ -47,9 +47,11 @@ void nameStores(WorldState& w, StoreNames& n) {
   n.add(w.trial.zones, "zones");
   n.add(w.trial.elements, "contact elements");
   n.add(w.trial.forces, "contact forces");
+  n.add(w.trial.frictionStatus, "friction status");
   n.add(w.trial.toolZones, "tool zones");
   n.add(w.trial.toolElements, "tool elements");
   n.add(w.trial.toolForces, "tool forces");
+  n.add(w.trial.toolFrictionStatus, "tool friction status");
   n.add(w.trial.history, "friction history");
   n.add(w.cache.centrelines, "centrelines");
   n.add(w.cache.broadphase, "broadphase cache");
@@ -123,10 +125,10 @@ void buildAssemble(WorldState& w, TaskGraph& g) {
   g.add("beam evaluation", evaluateBeams, w.fibres, w.beams, w.input, w.beamForces);
   if (w.contact.fibres)
     g.add("fibre contact law", evaluateFibreContacts, w.fibres, w.contact, s.zones, s.elements,
-          s.forces);
+          w.input, s.frictionStatus, s.forces);
   if (w.contact.tools)
     g.add("tool contact law", evaluateToolContacts, w.fibres, w.tools, s.toolZones, w.contact,
-          s.toolElements, w.input, s.toolForces);
+          s.toolElements, w.input, s.toolFrictionStatus, s.toolForces);
   g.add("clear", clearSystem, w.fibres, w.input, w.system);
   g.add("beam scatter", scatterBeams, w.fibres, w.beams, w.beamForces, w.input, w.system);
   g.add("loads", assembleLoads, w.fibres, w.loads, w.groups, w.input, w.system);

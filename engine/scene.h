@@ -196,6 +196,10 @@ struct ContactDef {
   int maxDetectionLoops = 3;          // n_A: contact elements fixed point
   int maxNormalLoops = 3;             // n_B: normals fixed point
   ElementPlacement elementPlacement = ElementPlacement::Weighted;
+  int frictionHoldAfter = 2;          // stick/slip changes of an element in a Newton pass before
+                                      // its status is held for the pass (0: never; <= 255)
+  double frictionHoldTolerance = 0.01;  // a held status is consistent within this relative
+                                        // distance of the slip circle (friction force error)
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

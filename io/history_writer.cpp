@@ -85,7 +85,8 @@ HistoryColumns contactColumns(const World& world) {
            "contact.stabilisation", "contact.detections", "contact.broadphase_rebuilds",
            "contact.candidate_pairs", "contact.loop_a_capped", "contact.max_overlap",
            "contact.redetect_zone_changes", "contact.redetect_gap_change",
-           "contact.redetect_particle_shift", "contact.consistency_passes"},
+           "contact.redetect_particle_shift", "contact.consistency_passes",
+           "contact.friction_held", "contact.friction_excess"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             const ContactReport& c = r.contact;
             row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
@@ -96,7 +97,8 @@ HistoryColumns contactColumns(const World& world) {
                                    double(c.candidatePairs), double(c.loopCapped),
                                    c.maxOverlap, double(c.redetectZoneChanges),
                                    c.redetectGapChange, c.redetectParticleShift,
-                                   double(c.consistencyPasses)});
+                                   double(c.consistencyPasses), double(c.frictionHeld),
+                                   c.frictionExcess});
           }};
 }
 

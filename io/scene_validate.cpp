@@ -397,6 +397,10 @@ void validateContact(const ContactDef& c) {
   positiveOrDefault(c.maxReversibleSlip, "contact.max_reversible_slip");
   atLeast(c.maxDetectionLoops, 1, "contact.max_detection_loops");
   atLeast(c.maxNormalLoops, 1, "contact.max_normal_loops");
+  if (c.frictionHoldAfter < 0 || c.frictionHoldAfter > 255)
+    fail("contact.friction_hold_after", "must be in [0, 255], got " + std::to_string(c.frictionHoldAfter));
+  if (!(c.frictionHoldTolerance > 0 && c.frictionHoldTolerance <= 1))
+    fail("contact.friction_hold_tolerance", "must be in (0, 1], got " + num(c.frictionHoldTolerance));
 }
 
 void validateTools(const SceneDef& s) {

@@ -9,6 +9,8 @@
 //                    = -k g - k p_reg / 2          g < -p_reg
 //   friction     trial  t = g_rev,0 + P (d - d_0), P = I - N N^T          (eq. 14)
 //                g_rev = t if |t| <= g_max, else g_max t / |t|            (eq. 15, 16)
+//                (a status held for the Newton pass, systems/friction_status.h, takes its
+//                branch whatever |t|: stick g_rev = t, slip g_rev = g_max t / |t| for t != 0)
 //                force on I: -mu R_N g_rev / g_max (at most mu R_N: Coulomb in slip)
 // The force on particle I is f = R_N N - mu R_N g_rev / g_max (on J: -f), so the element adds
 // -f . dd/dq to the residual and -(df/dd) to the tangent in d-space:
@@ -19,6 +21,7 @@
 #pragma once
 
 #include "components/contact_forces.h"
+#include "components/friction_status.h"
 #include "core/columns.h"
 #include "components/fibres.h"
 
@@ -43,7 +46,8 @@ struct ContactLawResult {
   double gap = 0;               // g, mm
   double normalForce = 0;       // R_N >= 0, N
   Vec3 gRev = Vec3::Zero();     // reversible slip now, mm
-  bool slip = false;            // |trial| > g_max
+  bool slip = false;            // the slip branch was taken (|trial| > g_max unless held)
+  double trialRatio = 0;        // |trial| / g_max (0 without friction or normal force)
   Vec3 force = Vec3::Zero();    // f on particle I (J gets -f), N
   Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  // -df/dd, N/mm
 };
@@ -61,8 +65,10 @@ inline void penaltyForce(double g, double k, double pReg, double& R, double& dR)
   }
 }
 
+// `hold`: kStatusNone (the return mapping decides), kStatusStick or kStatusSlip (that branch).
 inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
-                                   const ContactLawParams& p, bool symmetrised) {
+                                   const ContactLawParams& p, bool symmetrised,
+                                   std::uint8_t hold = kStatusNone) {
   ContactLawResult out;
   const Vec3& N = s.normal;
   out.gap = d.dot(N);
@@ -77,7 +83,9 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
     const double t = trial.norm();
     Eigen::Matrix3d dgRev = P;
     out.gRev = trial;
-    if (t > p.gMax) {
+    out.trialRatio = t / p.gMax;
+    const bool slip = hold == kStatusNone ? t > p.gMax : hold == kStatusSlip && t > 0;
+    if (slip) {
       out.slip = true;
       const Vec3 u = trial / t;
       out.gRev = p.gMax * u;

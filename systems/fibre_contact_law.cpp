@@ -1,6 +1,7 @@
 #include "systems/fibre_contact_law.h"
 
 #include "systems/contact_law.h"
+#include "systems/friction_status.h"
 #include "systems/particle.h"
 
 #include <tbb/parallel_for.h>
@@ -8,15 +9,19 @@
 namespace fibra {
 
 void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const ZoneStore& zones,
-                           const ContactElementStore& el, ContactForceStore& out) {
+                           const ContactElementStore& el, const IterationInput& input,
+                           FrictionStatusStore& status, ContactForceStore& out) {
   resizeContactForces(out, el.size());
+  sizeFrictionStatus(status, el.size());
   tbb::parallel_for(Index(0), el.size(), [&](Index e) {
     const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
     const Index z = el.zone[e];
     const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
                                zones.friction[z], p.gMax};
-    const ContactLawResult r = contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised);
+    const ContactLawResult r =
+        contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised, status.held[e]);
     storeContactLaw(r, e, out);
+    trackFrictionStatus(status, e, r, input.withTangent, p.frictionFlips);
   });
 }
 

@@ -4,7 +4,10 @@
 // Reads  FibreStore (q), ContactParams (p_reg / p_max, g_T,max, symmetrised), ZoneStore
 //        (penalty, p_max and mu per zone: its pair class's), ContactElementStore (particle
 //        weights, element weight w_e, normal, friction reference).
-// Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element).
+//        IterationInput (with or without the tangent).
+// Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element),
+//        FrictionStatusStore (the branch each element took; held statuses are read:
+//        systems/friction_status.h).
 // Per element: d = x^I - x^J from the particle weights, the law of systems/contact_law.h with the
 // penalty k_zone w_e (w_e: the element's share of the line, mean 1 over the zone,
 // systems/contact_elements.h), p_reg = (p_reg / p_max) p_max,zone and mu = mu_zone.
@@ -15,11 +18,14 @@
 #include "components/contact.h"
 #include "components/contact_forces.h"
 #include "components/contact_params.h"
+#include "components/friction_status.h"
+#include "components/iteration.h"
 
 namespace fibra {
 
 void evaluateFibreContacts(const FibreStore& fibres, const ContactParams& params,
                            const ZoneStore& zones, const ContactElementStore& elements,
+                           const IterationInput& input, FrictionStatusStore& status,
                            ContactForceStore& forces);
 
 }  // namespace fibra

@@ -57,8 +57,8 @@ TEST_CASE("assemble stage: evaluations side by side, the scatter a chain in a fi
   // What a system reads and writes is its signature's.
   const int law = index(g, "fibre contact law");
   CHECK(set(g.reads(law)) ==
-        std::set<std::string>{"fibres", "contact params", "zones", "contact elements"});
-  CHECK(set(g.writes(law)) == std::set<std::string>{"contact forces"});
+        std::set<std::string>{"fibres", "contact params", "zones", "contact elements", "input"});
+  CHECK(set(g.writes(law)) == std::set<std::string>{"friction status", "contact forces"});
   CHECK(set(g.writes(index(g, "tool contact scatter"))) == std::set<std::string>{"linear system"});
 }
 

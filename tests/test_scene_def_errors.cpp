@@ -30,6 +30,10 @@ TEST_CASE("contact parameters set in code are reported by their scene names") {
         "contact.skin: must be a finite value >= 0");
   CHECK(errorWith([](ContactDef& c) { c.testPointSpacing = 0; }) ==
         "contact.test_point_spacing: must be > 0");
+  CHECK(errorWith([](ContactDef& c) { c.frictionHoldAfter = 256; }) ==
+        "contact.friction_hold_after: must be in [0, 255], got 256");
+  CHECK(errorWith([](ContactDef& c) { c.frictionHoldTolerance = 0; }) ==
+        "contact.friction_hold_tolerance: must be in (0, 1], got 0");
 }
 
 TEST_CASE("a number beyond a double's range is a scene error naming its field") {
