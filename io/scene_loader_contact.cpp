@@ -35,7 +35,8 @@ ContactPairDef readContactPair(const Json& j, const std::string& path) {
     d.rule = k == "within" ? PairRule::Within : PairRule::Between;
   } else {
     if (!c.is_array())
-      fail(f.path("classes"), typeMismatch("two class names [a, b] or \"within\" or \"between\"", c));
+      fail(f.path("classes"),
+           typeMismatch("two class names [a, b] or \"within\" or \"between\"", c));
     if (c.size() != 2)
       fail(f.path("classes"), "must be two class names [a, b] (for the pairs within one class: "
                               "[a, a]), got " + std::to_string(c.size()) +

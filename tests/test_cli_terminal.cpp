@@ -91,7 +91,8 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
                       "    between: mu 0, p_max 0.001 mm, penalty 1 .. 10000 x E R\n") !=
         std::string::npos);
   // The run prints the same header as check (before its threads line).
-  const RunResult run = runFibra({"run", scene, "--out", scratch / "out", "--threads", "1"}, scratch);
+  const RunResult run =
+      runFibra({"run", scene, "--out", scratch / "out", "--threads", "1"}, scratch);
   REQUIRE(run.status == 0);
   const std::string header = r.output.substr(0, r.output.find("fibra: " + scene + ": the scene"));
   CHECK(run.output.starts_with(header + "  threads: 1\n"));
