@@ -16,7 +16,8 @@
 // Exit status: 0 solved; 1 an increment failed (after its cutbacks) or output could not be
 // written; 2 bad usage or a bad scene; 130 interrupted by SIGINT, 143 by SIGTERM. On failure and
 // interruption the last converged state is written (a frame, the final state) and the history
-// closed.
+// closed; they are for viewing, a run cannot be resumed from them (docs/SCENE.md "Stopping a
+// run").
 //
 // SIGINT and SIGTERM set the program's one process-level flag; the World polls it through its
 // cancel callback between Newton iterations and returns the last converged state. A second
@@ -86,7 +87,8 @@ const char* const kUsage =
     "  --quiet           only errors and the summary\n"
     "  --verbose         a line per Newton iteration, and contact details per increment\n"
     "Exit status: 0 solved, 1 an increment failed or output failed, 2 bad usage or scene,\n"
-    "130 interrupted (Ctrl-C), 143 terminated (SIGTERM); the last converged state is written.\n";
+    "130 interrupted (Ctrl-C), 143 terminated (SIGTERM; `timeout` then reports its own 124);\n"
+    "the last converged state and the history are written (for viewing: no resume).\n";
 
 struct Options {
   std::string scene, out, trace;
@@ -270,6 +272,13 @@ int run(const Options& o) {
   }
   if (o.verbosity != Verbosity::Quiet)
     std::fputs(terminal::describeProblem(*world, o.scene, o.threads).c_str(), stderr);
+  // From here on a signal stops the run cleanly: one that arrives while the outputs are being
+  // created cancels the first increment, so the initial state is written and no .part is left.
+  struct sigaction action {};
+  action.sa_handler = onStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
   std::optional<Outputs> outputs;
   try {
     clearOutputs(o.out);  // a previous run's frames must not mix with this run's
@@ -278,11 +287,6 @@ int run(const Options& o) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kFailed;
   }
-  struct sigaction action {};
-  action.sa_handler = onStopSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
 
   const int status = solve(*world, *outputs, o.verbosity);
   if (trace) writeTrace(*trace, o.trace);

@@ -21,7 +21,84 @@ std::string format(const char* fmt, auto... args) {
 
 double degrees(double rad) { return rad * 180 / std::numbers::pi; }
 
-std::string contactLine(const World& world) {
+// Penalty bounds as multiples of the zone's section stiffness E R.
+std::string penaltyBounds(double lo, double hi) { return format("penalty %g .. %g x E R", lo, hi); }
+
+// The laws' settings common to every pair (per pair class: pairLines).
+std::string lawLine(const ContactParams& c) {
+  const std::string initial = std::isfinite(c.initialPenalty)
+                                  ? format("%g N/mm", c.initialPenalty)
+                                  : std::string("E R");
+  std::string out = format("  contact law: %s, initial penalty %s, change <= x%g, p_reg %g p_max, "
+                           "g_T,max %g mm, friction tangent %s",
+                           penaltyBounds(c.pairs.penaltyMin[0], c.pairs.penaltyMax[0]).c_str(),
+                           initial.c_str(), c.penaltyChange, c.pRegRatio, c.gMax,
+                           c.symmetrised ? "symmetrised" : "consistent");
+  if (c.fibres) out += format(", element placement %s", c.weightedElements ? "weighted" : "paper");
+  return out + "\n";
+}
+
+// The fibres' contact classes in order of first appearance, with their fibre counts; "" when
+// every fibre is in the default class.
+std::string classesLine(const SceneDef& s) {
+  std::vector<std::pair<std::string, int>> classes;
+  for (const FibreDef& f : s.fibres) {
+    auto it = std::find_if(classes.begin(), classes.end(),
+                           [&](const auto& c) { return c.first == f.contactClass; });
+    if (it == classes.end()) it = classes.insert(classes.end(), {f.contactClass, 0});
+    ++it->second;
+  }
+  if (classes.size() == 1 && classes[0].first.empty()) return "";
+  std::string out = "  contact classes:";
+  for (size_t i = 0; i < classes.size(); ++i)
+    out += format("%s %s (%d fibres)", i ? "," : "",
+                  classes[i].first.empty() ? "(default)" : classes[i].first.c_str(),
+                  classes[i].second);
+  return out + "\n";
+}
+
+// One line per rule of contact.pairs with the values it resolves to (pair class i + 1).
+std::string pairLines(const SceneDef& s, const ContactClasses& c) {
+  if (s.contact.pairs.empty()) return "";
+  std::string out = "  contact pairs (other pairs: the section's mu, p_max and penalty above):\n";
+  for (size_t i = 0; i < s.contact.pairs.size(); ++i) {
+    const ContactPairDef& r = s.contact.pairs[i];
+    const std::string who = r.rule == PairRule::Within    ? "within"
+                            : r.rule == PairRule::Between ? "between"
+                                                          : "[" + r.classes[0] + ", " +
+                                                                r.classes[1] + "]";
+    out += format("    %s: mu %g, p_max %g mm, %s\n", who.c_str(), c.mu[i + 1], c.pMax[i + 1],
+                  penaltyBounds(c.penaltyMin[i + 1], c.penaltyMax[i + 1]).c_str());
+  }
+  return out;
+}
+
+// The steps whose contact normals are forced.
+std::string forcedLines(const SceneDef& s) {
+  std::string out;
+  for (size_t i = 0; i < s.steps.size(); ++i) {
+    const Vec3& d = s.steps[i].forcedNormal;
+    if (d.squaredNorm() > 0)
+      out += format("  forced normals: step %zu%s along [%g, %g, %g]\n", i + 1,
+                    s.steps[i].name.empty() ? "" : (" (" + s.steps[i].name + ")").c_str(), d.x(),
+                    d.y(), d.z());
+  }
+  return out;
+}
+
+std::string toolLines(const World& world) {
+  const ToolStore& tools = world.tools();
+  std::string out = format("  tools: %d\n", tools.size());
+  for (Index t = 0; t < tools.size(); ++t)
+    out += format("    %s: %s, mu %g, p_max %g mm\n", tools.name[t].c_str(),
+                  tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder", tools.friction[t],
+                  tools.pMax[t]);
+  return out;
+}
+
+// The contact choices that change results: the section's values (pair class 0), the laws, the
+// classes and every pair rule's resolved values, forced normals, tools.
+std::string contactLines(const World& world) {
   const SceneDef& s = world.scene();
   if (!s.contact.enabled && s.tools.empty()) return "  contact: none\n";
   const ContactParams c = resolveContact(world.fibres(), s);
@@ -29,15 +106,11 @@ std::string contactLine(const World& world) {
   if (c.fibres)
     out += format("  contact: fibre-fibre, p_max %g mm, mu %g, theta_cross %g deg, "
                   "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d\n",
-                  c.pMax, c.mu, degrees(c.thetaCross), degrees(c.thetaParallel),
+                  c.pairs.pMax[0], c.pairs.mu[0], degrees(c.thetaCross), degrees(c.thetaParallel),
                   c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops);
-  if (!c.tools) return out;
-  const ToolStore& tools = world.tools();
-  out += format("  tools: %d\n", tools.size());
-  for (Index t = 0; t < tools.size(); ++t)
-    out += format("    %s: %s, mu %g, p_max %g mm\n", tools.name[t].c_str(),
-                  tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder", tools.friction[t],
-                  tools.pMax[t]);
+  out += lawLine(c);
+  if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(s);
+  if (c.tools) out += toolLines(world);
   return out;
 }
 
@@ -53,7 +126,7 @@ std::string describeProblem(const World& world, const std::string& scene, int th
                 f.elements(), 9 * f.nodes());
   out += format("  %zu steps, %d increments, t = 0 .. %g\n", s.steps.size(), increments,
                 s.steps.empty() ? 0.0 : s.steps.back().endTime);
-  out += contactLine(world);
+  out += contactLines(world);
   if (threads >= 0)
     out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());
   return out;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 
 namespace fibra {
@@ -44,6 +45,20 @@ void levelTables(const SceneDef& s, ContactClasses& c) {
   }
 }
 
+// penalty_max >= penalty_min, the rule's or the section's: blames the field the rule gives (a
+// penalty_min above the section's penalty_max is the rule's penalty_min).
+void checkPenaltyBounds(const ContactPairDef& r, const std::string& path, double lo, double hi) {
+  if (hi >= lo && std::isfinite(hi)) return;
+  const bool ownMin = !std::isnan(r.penaltyMin), ownMax = !std::isnan(r.penaltyMax);
+  if (ownMin && !ownMax)
+    throw SceneError(path + ".penalty_min: must be <= penalty_max (" + number(hi) +
+                     ", the contact section's; or give the rule its own penalty_max), got " +
+                     number(lo));
+  throw SceneError(path + ".penalty_max: must be finite and >= penalty_min (" + number(lo) +
+                   (ownMin ? ", the rule's" : ", the contact section's") + "), got " +
+                   number(hi));
+}
+
 // The rule's values (NaN: the contact section's) appended as a new pair class.
 void addPairClass(const ContactPairDef& r, const std::string& path, ContactClasses& c) {
   if (!std::isnan(r.friction) && !(r.friction >= 0 && std::isfinite(r.friction)))
@@ -58,21 +73,33 @@ void addPairClass(const ContactPairDef& r, const std::string& path, ContactClass
   const double hi = orSection(r.penaltyMax, c.penaltyMax[0]);
   if (!(lo > 0 && std::isfinite(lo)))
     throw SceneError(path + ".penalty_min: must be a finite value > 0");
-  if (!(hi >= lo && std::isfinite(hi)))
-    throw SceneError(path + ".penalty_max: must be finite and >= penalty_min (" + number(lo) +
-                     ")");
+  checkPenaltyBounds(r, path, lo, hi);
   c.mu.push_back(orSection(r.friction, c.mu[0]));
   c.pMax.push_back(orSection(r.maxPenetration, c.pMax[0]));
   c.penaltyMin.push_back(lo);
   c.penaltyMax.push_back(hi);
 }
 
+// "unknown class 'c' (no fibre has it; the fibres' classes: a, b)": the first 8 classes by name.
+std::string unknownClass(const std::map<std::string, int>& index, const std::string& name) {
+  std::string list;
+  int shown = 0;
+  for (const auto& [n, i] : index) {
+    if (n.empty()) continue;
+    list += shown ? ", " : "";
+    list += ++shown > 8 ? "..." : n;
+    if (shown > 8) break;
+  }
+  const std::string what = "unknown class '" + name + "' (no fibre has it; ";
+  if (list.empty()) return what + "no fibre has a class: give the fibres a \"class\")";
+  return what + "the fibres' classes: " + list + ")";
+}
+
 int classIndex(const std::map<std::string, int>& index, const std::string& name,
                const std::string& path) {
   if (name.empty()) throw SceneError(path + ": empty class name (the default class is unnamed)");
   const auto it = index.find(name);
-  if (it == index.end())
-    throw SceneError(path + ": unknown class '" + name + "' (no fibre has it)");
+  if (it == index.end()) throw SceneError(path + ": " + unknownClass(index, name));
   return it->second;
 }
 
@@ -104,7 +131,26 @@ void pairTable(const SceneDef& s, const std::map<std::string, int>& index, Conta
       c.pairOf[a * n + b] = named[a * n + b] ? named[a * n + b] : a == b ? within : between;
 }
 
-void checkForcedNormals(const SceneDef& s) {
+// Forced normals act between fibres of different classes whose levels differ: a scene where no
+// pair can qualify would run the step with the normal rules, silently. With two classes or more
+// and two levels or more, some fibres of different classes have different levels.
+void checkForcedPairs(const SceneDef& s, const ContactClasses& c, const std::string& path) {
+  const std::set<int> classes(c.classOf.begin(), c.classOf.end());
+  if (classes.size() < 2) {
+    const std::string& name = s.fibres.empty() ? "" : s.fibres[0].contactClass;
+    throw SceneError(path + ": act between fibres of different classes, but every fibre is in " +
+                     (name.empty() ? std::string("the default class (no fibre has a \"class\")")
+                                   : "class '" + name + "'"));
+  }
+  std::set<double> levels(c.level.begin(), c.level.end());
+  for (size_t f = 0; f + 1 < c.firstLevel.size(); ++f)
+    if (c.firstLevel[f] == c.firstLevel[f + 1]) levels.insert(0.0);  // no table: level 0
+  if (levels.size() < 2)
+    throw SceneError(path + ": every fibre has level " + number(*levels.begin()) +
+                     ", so no crossing is oriented (give the fibres on top higher \"levels\")");
+}
+
+void checkForcedNormals(const SceneDef& s, const ContactClasses& c) {
   for (size_t i = 0; i < s.steps.size(); ++i) {
     const Vec3& d = s.steps[i].forcedNormal;
     if (d.squaredNorm() == 0) continue;
@@ -112,6 +158,7 @@ void checkForcedNormals(const SceneDef& s) {
     if (!s.contact.enabled) throw SceneError(path + ": needs fibre contact (a contact section)");
     if (!d.allFinite() || std::abs(d.norm() - 1) > 1e-12)
       throw SceneError(path + ".direction: must be a finite unit vector");
+    checkForcedPairs(s, c, path);
   }
 }
 
@@ -137,7 +184,7 @@ ContactClasses resolveContactClasses(const SceneDef& s, const PairSettings& sect
   c.classes = int(index.size());
   levelTables(s, c);
   pairTable(s, index, c);
-  checkForcedNormals(s);
+  checkForcedNormals(s, c);
   return c;
 }
 

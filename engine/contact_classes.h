@@ -27,9 +27,11 @@ ContactClasses defaultContactClasses(Index fibres, const PairSettings& all);
 
 // The scene's classes, levels and pair classes; `section` holds the contact section's resolved
 // values. Throws SceneError naming the field: an unknown or empty class in a rule, a class pair
-// or keyword rule given twice, a negative friction, a p_max <= 0, a penalty_min <= 0 or a
-// penalty_max below the rule's penalty_min, a level table that does not start at 0 or whose
-// `from` do not increase, a forced normal in a scene without fibre contact.
+// or keyword rule given twice, a negative friction, a p_max <= 0, a penalty_min <= 0, a
+// penalty_max below penalty_min (the rule's or the section's; a rule's penalty_min above the
+// section's penalty_max names penalty_min), a level table that does not start at 0 or whose
+// `from` do not increase, forced normals in a scene without fibre contact, with every fibre in
+// one class, or with every fibre at one level (no pair would be forced).
 ContactClasses resolveContactClasses(const SceneDef& scene, const PairSettings& section);
 
 }  // namespace fibra

@@ -4,6 +4,7 @@
 // of an iteration (engine/pipeline.h).
 #include "engine/contact_setup.h"
 #include "engine/fibre_builder.h"
+#include "engine/group_order.h"
 #include "engine/world_state.h"
 #include "systems/beam_evaluation.h"
 #include "systems/beam_section.h"
@@ -54,7 +55,8 @@ void addGroup(GroupStore& g, const std::string& name, Index firstNode, const std
   for (Index n : nodes) g.members.push_back(firstNode + n);
 }
 
-// A union group: the global nodes of its members (groups already in the store), each once.
+// A union group: the global nodes of its members (groups already in the store: automatic ones
+// and scene groups resolved before it, engine/group_order.h), each once.
 void addUnion(GroupStore& g, const GroupDef& def, const std::string& path) {
   std::map<std::string, Index> known;
   for (Index i = 0; i < g.size(); ++i) known.emplace(g.name[i], i);
@@ -85,7 +87,7 @@ void buildGroups(WorldState& w) {
     addGroup(w.groups, fs.name[f] + ".all", fs.firstNode[f], all);
   }
   const auto fibres = indexByName(w.scene.fibres);
-  for (size_t i = 0; i < w.scene.groups.size(); ++i) {
+  for (size_t i : groupResolutionOrder(w.scene.groups)) {  // unions after their members
     const GroupDef& g = w.scene.groups[i];
     if (!g.members.empty()) {
       addUnion(w.groups, g, at("groups", i));

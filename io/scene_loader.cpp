@@ -102,7 +102,11 @@ FibreDef readFibre(const Json& j, const std::string& path) {
 
 // A group: nodes of one fibre ("fibre" and "nodes") or a union of other groups ("union").
 GroupDef readGroup(const Json& j, const std::string& path) {
-  const bool isUnion = Fields(j, path, {"name", "fibre", "nodes", "union"}).has("union");
+  const Fields any(j, path, {"name", "fibre", "nodes", "union"});
+  const bool isUnion = any.has("union");
+  if (!isUnion && !any.has("fibre") && !any.has("nodes"))
+    fail(path, "give either 'fibre' and 'nodes' (nodes of one fibre) or 'union' (names of other "
+               "groups)");
   const Fields f = isUnion ? Fields(j, path, {"name", "union"}, "a union group")
                            : Fields(j, path, {"name", "fibre", "nodes"});
   GroupDef g;
@@ -185,7 +189,8 @@ SceneDef readScene(const Json& root) {
   const Fields f(
       root, "",
       {"description", "units", "materials", "fibres", "groups", "tables", "boundary_conditions",
-       "loads", "steps", "contact", "tools", "stabilisation", "solver", "output"});
+       "loads", "steps", "contact", "tools", "stabilisation", "solver", "output",
+       "generators"});  // expanded and removed before (named here for the suggestion)
   f.string("description", "");
   SceneDef s;
   s.units = f.string("units");

@@ -17,6 +17,9 @@ std::vector<LevelDef> readLevels(const Json& j, const std::string& path) {
     if (!p.is_array() || p.size() != 2) fail(at, typeMismatch("a piece [from, level]", p));
     out.push_back({asNumber(p[0], at + "[0]"), asNumber(p[1], at + "[1]")});
   });
+  if (out.empty())
+    fail(path, "must list at least one piece [from, level] (or give one level for the whole "
+               "fibre)");
   return out;
 }
 
@@ -31,8 +34,13 @@ ContactPairDef readContactPair(const Json& j, const std::string& path) {
                                   shown(k) + "\"");
     d.rule = k == "within" ? PairRule::Within : PairRule::Between;
   } else {
-    if (!c.is_array() || c.size() != 2)
-      fail(f.path("classes"), typeMismatch("two class names [a, b]", c));
+    if (!c.is_array())
+      fail(f.path("classes"),
+           typeMismatch("two class names [a, b] or \"within\" or \"between\"", c));
+    if (c.size() != 2)
+      fail(f.path("classes"), "must be two class names [a, b] (for the pairs within one class: "
+                              "[a, a]), got " + std::to_string(c.size()) +
+                                  (c.size() == 1 ? " name" : " names"));
     d.classes = {asString(c[0], f.path("classes") + "[0]"),
                  asString(c[1], f.path("classes") + "[1]")};
   }

@@ -4,6 +4,7 @@
 // degrees, a tool's direction as its "normal" or "axis".
 #include "io/scene_validate.h"
 
+#include "engine/group_order.h"
 #include "io/json_reader.h"
 
 #include <Eigen/Geometry>
@@ -197,40 +198,35 @@ NodeSet fibreGroup(const SceneDef& s, const GroupDef& g, const Names& fibres,
   return nodesOfFibre(f, g.nodes);
 }
 
-[[noreturn]] void unknownMember(const SceneDef& s, const std::string& m, const Groups& groups,
-                                const std::string& mp) {
-  for (size_t later = 0; later < s.groups.size(); ++later)
-    if (s.groups[later].name == m)
-      fail(mp, "group '" + m + "' is listed after this one (" + at("groups", later) +
-                   "); a union names automatic groups and groups listed before it");
-  Names names;
-  for (const auto& [n, unused] : groups) names.emplace(n, 0);
-  resolve(names, m, "group", mp);  // fails
-  fail(mp, "unknown group '" + m + "'");
-}
-
-// The union of the groups `g.members` names: automatic groups and groups listed before; a node
-// in several members counts once.
-NodeSet unionGroup(const SceneDef& s, const GroupDef& g, const Groups& groups,
-                   const std::string& p) {
-  NodeSet set;
-  std::set<std::pair<size_t, int>> seen;
+// A union's members, each once, known (automatic groups and the scene's groups, listed before
+// or after it), not the union itself. Their nodes are gathered later, in resolution order.
+void checkMembers(const GroupDef& g, const Groups& automatic, const Names& scene,
+                  const std::string& p) {
   std::set<std::string> named;
   for (size_t k = 0; k < g.members.size(); ++k) {
     const std::string& m = g.members[k];
     const std::string mp = at(p + ".union", k);
     if (m == g.name) fail(mp, "a group cannot be a union of itself");
     if (!named.insert(m).second) fail(mp, "group '" + m + "' listed twice");
-    const auto member = groups.find(m);
-    if (member == groups.end()) unknownMember(s, m, groups, mp);
-    for (const auto& node : member->second.nodes)
-      if (seen.insert(node).second) set.nodes.push_back(node);
+    if (automatic.count(m) || scene.count(m)) continue;
+    Names names = scene;
+    for (const auto& [n, unused] : automatic) names.emplace(n, 0);
+    resolve(names, m, "group", mp);  // fails
   }
+}
+
+// The union of the groups `g.members` names (all resolved before it); a node in several members
+// counts once.
+NodeSet unionGroup(const GroupDef& g, const Groups& groups) {
+  NodeSet set;
+  std::set<std::pair<size_t, int>> seen;
+  for (const std::string& m : g.members)
+    for (const auto& node : groups.at(m).nodes)
+      if (seen.insert(node).second) set.nodes.push_back(node);
   return set;
 }
 
-// Every group by name: the fibres' automatic ones, then the scene's.
-Groups validateGroups(const SceneDef& s, const Names& fibres) {
+Groups automaticGroups(const SceneDef& s) {
   Groups groups;
   for (size_t i = 0; i < s.fibres.size(); ++i) {
     std::vector<int> all(nodeCount(s.fibres[i]));
@@ -239,19 +235,34 @@ Groups validateGroups(const SceneDef& s, const Names& fibres) {
     groups[s.fibres[i].name + ".end"] = nodesOfFibre(i, {int(all.size()) - 1});
     groups[s.fibres[i].name + ".all"] = nodesOfFibre(i, all);
   }
-  Names scene;
-  for (size_t i = 0; i < s.groups.size(); ++i) {
+  return groups;
+}
+
+// One form or the other, and a name of its own.
+void checkGroupForm(const SceneDef& s, size_t i, const Groups& automatic, const Names& scene) {
+  const GroupDef& g = s.groups[i];
+  const std::string p = at("groups", i);
+  if (automatic.count(g.name))
+    fail(p + ".name", "'" + g.name + "' is an automatic group of fibre '" +
+                          s.fibres[automatic.at(g.name).nodes[0].first].name + "'");
+  if (!g.members.empty() && (!g.fibre.empty() || !g.nodes.empty()))
+    fail(p, "give either 'union' or 'fibre' and 'nodes', not both");
+  if (g.members.empty() && g.fibre.empty() && g.nodes.empty())
+    fail(p, "give either 'fibre' and 'nodes' (nodes of one fibre) or 'union' (names of other "
+            "groups)");
+  if (!g.members.empty()) checkMembers(g, automatic, scene, p);
+}
+
+// Every group by name: the fibres' automatic ones, then the scene's, unions after the groups
+// they name (engine/group_order.h).
+Groups validateGroups(const SceneDef& s, const Names& fibres) {
+  Groups groups = automaticGroups(s);
+  const Names scene = uniqueNames(s.groups, "groups");
+  for (size_t i = 0; i < s.groups.size(); ++i) checkGroupForm(s, i, groups, scene);
+  for (size_t i : groupResolutionOrder(s.groups)) {
     const GroupDef& g = s.groups[i];
-    const std::string p = at("groups", i);
-    checkName(g.name, p + ".name");
-    if (auto [it, fresh] = scene.emplace(g.name, i); !fresh)
-      fail(p + ".name", "duplicate name '" + g.name + "' (also " + at("groups", it->second) + ")");
-    if (groups.count(g.name))
-      fail(p + ".name", "'" + g.name + "' is an automatic group of fibre '" +
-                            s.fibres[groups[g.name].nodes[0].first].name + "'");
-    if (!g.members.empty() && (!g.fibre.empty() || !g.nodes.empty()))
-      fail(p, "give either 'union' or 'fibre' and 'nodes', not both");
-    groups[g.name] = g.members.empty() ? fibreGroup(s, g, fibres, p) : unionGroup(s, g, groups, p);
+    groups[g.name] =
+        g.members.empty() ? fibreGroup(s, g, fibres, at("groups", i)) : unionGroup(g, groups);
   }
   return groups;
 }

@@ -18,6 +18,20 @@ namespace {
 
 using namespace generator_fields;
 
+// The seed: a whole number from 0 to 2^53 (a double holds every whole number up to there, so
+// 5e6 and 5000000.0 read as 5000000 and nothing is rounded).
+std::uint64_t readSeed(const Fields& f) {
+  constexpr std::uint64_t kMax = std::uint64_t(1) << 53;
+  const char* range = "a whole number from 0 to 9007199254740992 (2^53)";
+  const Json& j = f.at("seed");
+  if (!j.is_number()) bad(f, "seed", json_reader::typeMismatch(range, j));
+  if (j.is_number_unsigned() && j.get<std::uint64_t>() <= kMax) return j.get<std::uint64_t>();
+  const double v = j.get<double>();
+  if (!j.is_number_unsigned() && v >= 0 && v <= double(kMax) && v == std::floor(v))
+    return std::uint64_t(v);
+  bad(f, "seed", std::string("must be ") + range + ", got " + json_reader::shown(j.dump()));
+}
+
 YarnPerturbation readPerturbation(const Json& j, const std::string& path, const YarnDef& y) {
   const Fields f(j, path, {"amplitude", "modes", "min_wavelength", "seed"});
   YarnPerturbation p;
@@ -35,9 +49,7 @@ YarnPerturbation readPerturbation(const Json& j, const std::string& path, const 
     bad(f, "min_wavelength", "must be at least two element lengths (" + num(2 * element) +
                                  " mm: a shorter wave is not represented), got " +
                                  num(p.minWavelength));
-  const int seed = f.integer("seed");
-  if (seed < 0) bad(f, "seed", "must be >= 0, got " + std::to_string(seed));
-  p.seed = std::uint64_t(seed);
+  p.seed = readSeed(f);
   return p;
 }
 

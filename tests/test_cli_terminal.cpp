@@ -51,6 +51,53 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(b.output == "fibra: error: " + bad + ": fibres[0].radius: must be > 0, got -1\n");
 }
 
+TEST_CASE("fibra check and run show the pair rules, classes, contact laws and forced normals") {
+  TempDir scratch("cli_pairs");
+  const std::string scene = sourcePath("samples/forced_normals.json");
+  const RunResult r = runFibra({"check", scene}, scratch);
+  REQUIRE(r.status == 0);
+  // Before, one line with "mu 0.1" (the largest rule's): the section's mu is 0, the warp-weft
+  // rule's 0.1, and nothing said which pairs took which.
+  for (const char* line :
+       {"  contact: fibre-fibre, p_max 0.0005 mm, mu 0, theta_cross 20 deg, ",
+        "  contact law: penalty 1 .. 10000 x E R, initial penalty E R, change <= x10, p_reg 0.5 "
+        "p_max, g_T,max 0.0005 mm, friction tangent consistent, element placement weighted\n",
+        "  contact classes: warp (3 fibres), weft (3 fibres)\n",
+        "  contact pairs (other pairs: the section's mu, p_max and penalty above):\n"
+        "    [warp, weft]: mu 0.1, p_max 0.0005 mm, penalty 1 .. 10000 x E R\n"
+        "    within: mu 0, p_max 0.001 mm, penalty 1 .. 10000 x E R\n",
+        "  forced normals: step 1 (initial_geometry) along [0, 0, 1]\n"}) {
+    CAPTURE(line);
+    CHECK(r.output.find(line) != std::string::npos);
+  }
+  // Other choices that change results, and a rule's own penalty bounds.
+  nlohmann::json j = nlohmann::json::parse(readFile(scene), nullptr, true, true);
+  j["contact"]["element_placement"] = "paper";
+  j["contact"]["friction_tangent"] = "symmetrised";
+  j["contact"]["initial_penalty"] = 100;
+  j["contact"]["pairs"][0]["penalty_min"] = 0.01;
+  j["contact"]["pairs"][0]["penalty_max"] = 50;
+  j["contact"]["pairs"][1]["classes"] = "between";
+  j["fibres"][5]["class"] = "";
+  writeFile(scratch / "choices.json", j.dump());
+  const RunResult c = runFibra({"check", scratch / "choices.json"}, scratch);
+  REQUIRE(c.status == 0);
+  CHECK(c.output.find("initial penalty 100 N/mm, ") != std::string::npos);
+  CHECK(c.output.find("friction tangent symmetrised, element placement paper\n") !=
+        std::string::npos);
+  CHECK(c.output.find("  contact classes: warp (3 fibres), weft (2 fibres), (default) (1 "
+                      "fibres)\n") != std::string::npos);
+  CHECK(c.output.find("    [warp, weft]: mu 0.1, p_max 0.0005 mm, penalty 0.01 .. 50 x E R\n"
+                      "    between: mu 0, p_max 0.001 mm, penalty 1 .. 10000 x E R\n") !=
+        std::string::npos);
+  // The run prints the same header as check (before its threads line).
+  const RunResult run =
+      runFibra({"run", scene, "--out", scratch / "out", "--threads", "1"}, scratch);
+  REQUIRE(run.status == 0);
+  const std::string header = r.output.substr(0, r.output.find("fibra: " + scene + ": the scene"));
+  CHECK(run.output.starts_with(header + "  threads: 1\n"));
+}
+
 TEST_CASE("fibra run prints a header, one line per increment and a summary, --quiet only the summary") {
   TempDir scratch("cli_lines");
   const std::string scene = sourcePath("samples/cantilever.json"), out = scratch / "out";

@@ -156,7 +156,8 @@ TEST_CASE("pair rules and levels that cannot hold are scene errors naming the fi
     return errorOf([&] { World world(s); });
   };
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].classes[0] = "c"; }) ==
-        "contact.pairs[1].classes[0]: unknown class 'c' (no fibre has it)");
+        "contact.pairs[1].classes[0]: unknown class 'c' (no fibre has it; the fibres' classes: "
+        "a0, a1, b0, b1)");
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].classes = {"b0", "a0"}; }) ==
         "contact.pairs[1].classes: the pair ('b0', 'a0') is given twice");
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].classes[1] = ""; }) ==
@@ -168,7 +169,8 @@ TEST_CASE("pair rules and levels that cannot hold are scene errors naming the fi
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[1].penaltyMin = 0; }) ==
         "contact.pairs[1].penalty_min: must be a finite value > 0");
   CHECK(errorWith([](SceneDef& s) { s.contact.pairs[0].penaltyMax = 1e-3; }) ==
-        "contact.pairs[0].penalty_max: must be finite and >= penalty_min (0.01)");
+        "contact.pairs[0].penalty_max: must be finite and >= penalty_min (0.01, the rule's), got "
+        "0.001");
   CHECK(errorWith([](SceneDef& s) {
           s.contact.pairs[0].rule = s.contact.pairs[1].rule = PairRule::Between;
         }) == "contact.pairs[1].classes: this keyword rule is given twice");
@@ -182,6 +184,67 @@ TEST_CASE("pair rules and levels that cannot hold are scene errors naming the fi
         }) == "steps[1].forced_normals: needs fibre contact (a contact section)");
   CHECK(errorWith([](SceneDef& s) { s.steps[0].forcedNormal = Vec3(0, 0, 2); }) ==
         "steps[0].forced_normals.direction: must be a finite unit vector");
+}
+
+TEST_CASE("a rule's penalty bound that conflicts with the section's names the rule's own field") {
+  SceneDef s = twoPairs(0.1, 1e-4, 0.3, 4e-4);
+  const auto errorWith = [&](auto change) {
+    SceneDef t = s;
+    change(t);
+    return errorOf([&] { World world(t); });
+  };
+  // penalty_min above the section's penalty_max (1e4), no penalty_max of its own: before, the
+  // message blamed penalty_max, a field the rule does not give.
+  CHECK(errorWith([](SceneDef& t) { t.contact.pairs[1].penaltyMin = 1e5; }) ==
+        "contact.pairs[1].penalty_min: must be <= penalty_max (10000, the contact section's; or "
+        "give the rule its own penalty_max), got 100000");
+  // penalty_max below the section's penalty_min (1), no penalty_min of its own.
+  CHECK(errorWith([](SceneDef& t) {
+          t.contact.pairs[1].penaltyMin = std::nan("");
+          t.contact.pairs[1].penaltyMax = 0.5;
+        }) == "contact.pairs[1].penalty_max: must be finite and >= penalty_min (1, the contact "
+              "section's), got 0.5");
+  CHECK(errorWith([](SceneDef& t) {
+          for (FibreDef& f : t.fibres) f.contactClass = "";
+        }) == "contact.pairs[0].classes[0]: unknown class 'a0' (no fibre has it; no fibre has a "
+              "class: give the fibres a \"class\")");
+  // Both bounds given by the rule and consistent: accepted.
+  s.contact.pairs[1].penaltyMin = 2e4;
+  s.contact.pairs[1].penaltyMax = 3e4;
+  CHECK(errorOf([&] { World world(s); }) == "(no error)");
+}
+
+TEST_CASE("forced normals that could force no pair are scene errors naming the step") {
+  SceneDef s = twoPairs(0.1, 1e-4, 0.3, 4e-4);
+  s.steps[0].forcedNormal = Vec3::UnitZ();
+  const auto errorWith = [&](auto change) {
+    SceneDef t = s;
+    change(t);
+    return errorOf([&] { World world(t); });
+  };
+  // Four classes, every fibre at the default level 0: nothing is oriented.
+  CHECK(errorWith([](SceneDef&) {}) ==
+        "steps[0].forced_normals: every fibre has level 0, so no crossing is oriented (give the "
+        "fibres on top higher \"levels\")");
+  CHECK(errorWith([](SceneDef& t) {
+          for (FibreDef& f : t.fibres) f.levels = {{0, 2}};
+        }) == "steps[0].forced_normals: every fibre has level 2, so no crossing is oriented "
+              "(give the fibres on top higher \"levels\")");
+  // No classes: forced normals act only between classes.
+  CHECK(errorWith([](SceneDef& t) {
+          t.contact.pairs.clear();
+          for (FibreDef& f : t.fibres) f.contactClass = "";
+        }) == "steps[0].forced_normals: act between fibres of different classes, but every fibre "
+              "is in the default class (no fibre has a \"class\")");
+  CHECK(errorWith([](SceneDef& t) {
+          t.contact.pairs.clear();
+          for (FibreDef& f : t.fibres) f.contactClass = "yarn";
+        }) == "steps[0].forced_normals: act between fibres of different classes, but every fibre "
+              "is in class 'yarn'");
+  // The upper beams one level up: accepted.
+  CHECK(errorWith([](SceneDef& t) {
+          t.fibres[1].levels = t.fibres[3].levels = {{0, 1}};
+        }) == "(no error)");
 }
 
 TEST_CASE("the scene file reads classes, level tables, pair rules and forced normals") {
@@ -206,7 +269,16 @@ TEST_CASE("the scene file reads classes, level tables, pair rules and forced nor
         "s.json: contact.pairs[0].classes: must be two class names or \"within\" or "
         "\"between\", got \"across\"");
   nlohmann::json j = nlohmann::json::parse(text);
+  j["contact"]["pairs"][0]["classes"] = {"y"};
+  CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
+        "s.json: contact.pairs[0].classes: must be two class names [a, b] (for the pairs within "
+        "one class: [a, a]), got 1 name");
   j["contact"]["pairs"][0]["classes"] = "between";
+  j["fibres"][0]["levels"] = nlohmann::json::array();
+  CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
+        "s.json: fibres[0].levels: must list at least one piece [from, level] (or give one level "
+        "for the whole fibre)");
+  j["fibres"][0]["levels"] = {{0, 1}, {2, -1}};
   j["steps"][0]["forced_normals"]["direction"] = {0, 0, 0};
   CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
         "s.json: steps[0].forced_normals.direction: must be a non-zero vector");

@@ -121,6 +121,14 @@ TEST_CASE("centrelines that cut each other keep their contact elements under for
 TEST_CASE("the normal rules come back for equal levels and for fibres of one class") {
   SceneDef s = cutCrossing(0, 0);  // equal levels
   s.fibres[1].geometry.points = {Vec3(0, -2, 0.15), Vec3(0, 2, 0.15)};  // B above, penetrating
+  // A third fibre 50 mm away, of its own class and level: a scene where no pair could be forced
+  // is refused (tests/test_contact_classes.cpp); this one has such pairs, A-B is not one.
+  FibreDef far = s.fibres[0];
+  far.name = "C";
+  far.contactClass = "c";
+  far.levels = {{0, 1}};
+  for (Vec3& p : far.geometry.points) p.y() += 50;
+  s.fibres.push_back(far);
   for (bool sameClass : {false, true}) {
     CAPTURE(sameClass);
     if (sameClass) s.fibres[0].levels = {{0, 1}}, s.fibres[1].contactClass = "a";

@@ -1,5 +1,6 @@
 // Scene loader on bad input: every class of error is answered with the file, the field path and
 // what is wrong — the whole message is compared, so a wrong path or a vaguer text fails.
+#include "engine/world.h"
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
 
@@ -69,6 +70,61 @@ TEST_CASE("scene errors: each sample in samples/bad is rejected with file, field
     CAPTURE(name);
     const std::string path = sourcePath(std::string("samples/bad/") + name + ".json");
     CHECK(errorOf([&] { loadScene(path); }) == path + ": " + expected);
+  }
+}
+
+namespace {
+
+// The scene loaded and its World built, as `fibra check` does: errors name the file.
+void checkScene(const std::string& path) {
+  const SceneDef scene = loadScene(path);
+  try {
+    World world(scene);
+  } catch (const SceneError& e) {
+    throw SceneError(path + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+TEST_CASE("scene errors: samples/bad of contact classes, forced normals, groups and generators") {
+  const std::pair<const char*, const char*> cases[] = {
+      {"forced_normals_no_class",
+       "steps[0].forced_normals: act between fibres of different classes, but every fibre is in "
+       "the default class (no fibre has a \"class\")"},
+      {"forced_normals_equal_levels",
+       "steps[0].forced_normals: every fibre has level 0, so no crossing is oriented (give the "
+       "fibres on top higher \"levels\")"},
+      {"empty_levels",
+       "fibres[0].levels: must list at least one piece [from, level] (or give one level for the "
+       "whole fibre)"},
+      {"pair_penalty_min",
+       "contact.pairs[0].penalty_min: must be <= penalty_max (10000, the contact section's; or "
+       "give the rule its own penalty_max), got 100000"},
+      {"pair_one_class",
+       "contact.pairs[0].classes: must be two class names [a, b] (for the pairs within one "
+       "class: [a, a]), got 1 name"},
+      {"pair_unknown_class",
+       "contact.pairs[0].classes[1]: unknown class 'wetf' (no fibre has it; the fibres' classes: "
+       "warp, weft)"},
+      {"group_without_form",
+       "groups[0]: give either 'fibre' and 'nodes' (nodes of one fibre) or 'union' (names of "
+       "other groups)"},
+      {"union_cycle",
+       "groups[0].union[1]: group 'b' includes this group through its own union (a cycle: a -> b "
+       "-> a)"},
+      {"generator_typo", "generator: unknown field (did you mean 'generators'?)"},
+      {"yarn_seed",
+       "generators[0].perturbation.seed: must be a whole number from 0 to 9007199254740992 "
+       "(2^53), got -1"},
+  };
+  for (const auto& [name, expected] : cases) {
+    CAPTURE(name);
+    const std::string path = sourcePath(std::string("samples/bad/") + name + ".json");
+    CHECK(errorOf([&] { checkScene(path); }) == path + ": " + expected);
+    // The first line of each sample names the faulty field.
+    const std::string field = std::string(expected).substr(0, std::string(expected).find(':'));
+    CHECK(readFile(path).starts_with("// " + field + ": "));
   }
 }
 

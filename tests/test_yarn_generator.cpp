@@ -110,6 +110,59 @@ TEST_CASE("yarn generator: the sample yarn_crush expands to 19 fibres and the ya
   CHECK(s.groups[0].members.size() == 19);
 }
 
+TEST_CASE("yarn generator: the seed is any whole number up to 2^53, its message says so") {
+  const auto seedError = [](const Json& seed) {
+    return errorAfter([&](Json& j) { j["generators"][0]["perturbation"]["seed"] = seed; });
+  };
+  const std::string range =
+      "s.json: generators[0].perturbation.seed: must be a whole number from 0 to "
+      "9007199254740992 (2^53), got ";
+  // Before: "must be >= 0, got -1" for -1, "expected an integer, got the number 3000000000"
+  // for a seed beyond 2^31 that the documentation allowed.
+  CHECK(seedError(-1) == range + "-1");
+  CHECK(seedError(1.5) == range + "1.5");
+  CHECK(seedError(1e300) == range + "1e+300");
+  CHECK(seedError(std::uint64_t(1) << 60) == range + "1152921504606846976");
+  CHECK(seedError("7") == "s.json: generators[0].perturbation.seed: expected a whole number "
+                          "from 0 to 9007199254740992 (2^53), got a string \"7\"");
+  for (const Json& fine : {Json(3000000000u), Json(std::uint64_t(1) << 53), Json(5e6)})
+    CHECK(seedError(fine) == "(no error)");
+  // 5e6 and 5000000 are one seed.
+  Json a = yarnScene(7, 0.003, 0), b = a;
+  a["generators"][0]["perturbation"]["seed"] = 5e6;
+  b["generators"][0]["perturbation"]["seed"] = 5000000;
+  CHECK(sameBits(load(a).fibres[3].geometry.points, load(b).fibres[3].geometry.points));
+}
+
+TEST_CASE("generated groups: a scene union names a yarn's end groups") {
+  Json j = yarnScene(7, 0, 0);
+  // The scene's own union, listed before the groups the generator appends.
+  j["groups"] = {{{"name", "both_ends"}, {"union", {"yarn.start", "yarn.end"}}}};
+  j["boundary_conditions"][0]["group"] = "both_ends";
+  j.erase("loads");
+  const SceneDef s = load(j);
+  World w(s);
+  CHECK(w.constraints().dof.size() == size_t(2 * 7 * 9));  // every fibre's two ends clamped
+  // A cycle through a generated group is refused, naming the scene's group.
+  j["groups"][0]["union"] = {"yarn.start"};
+  j["groups"].push_back({{"name", "loop"}, {"union", {"both_ends"}}});
+  j["groups"][0]["union"].push_back("loop");
+  CHECK(errorOf([&] { load(j); }) ==
+        "s.json: groups[0].union[1]: group 'loop' includes this group through its own union (a "
+        "cycle: both_ends -> loop -> both_ends)");
+}
+
+TEST_CASE("an unknown top-level key close to generators suggests it") {
+  for (const char* typo : {"generator", "generater", "Generators"}) {
+    CAPTURE(typo);
+    Json j = yarnScene(7, 0, 0);
+    j[typo] = j["generators"];
+    j.erase("generators");
+    CHECK(errorOf([&] { load(j); }) ==
+          std::string("s.json: ") + typo + ": unknown field (did you mean 'generators'?)");
+  }
+}
+
 TEST_CASE("yarn generator: a different seed gives a different yarn") {
   const SceneDef a = load(yarnScene(7, 0.003, 1)), b = load(yarnScene(7, 0.003, 2));
   for (size_t f = 0; f < a.fibres.size(); ++f) {
@@ -340,16 +393,22 @@ TEST_CASE("union groups: bad members are named by their field") {
         "s.json: groups[0].union[2]: group 'a.start' listed twice");
   CHECK(unionError([](Json& j) { j["groups"][0]["union"][0] = "starts"; }) ==
         "s.json: groups[0].union[0]: a group cannot be a union of itself");
-  CHECK(unionError([](Json& j) { j["groups"][0]["union"][0] = "ends"; }) ==
-        "s.json: groups[0].union[0]: group 'ends' is listed after this one (groups[1]); a union "
-        "names automatic groups and groups listed before it");
+  CHECK(unionError([](Json& j) {
+          j["groups"][0]["union"][0] = "ends";
+          j["groups"][1]["union"][0] = "starts";
+        }) == "s.json: groups[0].union[0]: group 'ends' includes this group through its own union "
+              "(a cycle: starts -> ends -> starts)");
   CHECK(unionError([](Json& j) { j["groups"][0]["union"] = Json::array(); }) ==
         "s.json: groups[0].union: must list at least one group");
   CHECK(unionError([](Json& j) { j["groups"][0]["union"][0] = 3; }) ==
         "s.json: groups[0].union[0]: expected a string, got the number 3");
   CHECK(unionError([](Json& j) { j["groups"][0]["fibre"] = "a"; }) ==
         "s.json: groups[0].fibre: unknown field for a union group (known fields: name, union)");
+  // Neither form: before, "groups[0].fibre: required field missing", as if only one were allowed.
   CHECK(unionError([](Json& j) { j["groups"][0].erase("union"); }) ==
+        "s.json: groups[0]: give either 'fibre' and 'nodes' (nodes of one fibre) or 'union' "
+        "(names of other groups)");
+  CHECK(unionError([](Json& j) { j["groups"][0] = {{"name", "starts"}, {"nodes", {0}}}; }) ==
         "s.json: groups[0].fibre: required field missing");
   CHECK(unionError([](Json& j) {
           j["boundary_conditions"].push_back({{"type", "pin"}, {"group", "b.start"}});
