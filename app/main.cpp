@@ -99,6 +99,14 @@ const char* const kUsage =
     "Exit status: 0 solved, 1 an increment failed or output failed, 2 bad usage or scene,\n"
     "130 interrupted (Ctrl-C), 143 terminated (SIGTERM); the last converged state is written.\n";
 
+// The usage line of `command` ("fibra plot RUN_DIR ..."), or of run for any other.
+std::string usageLine(const std::string& command) {
+  const std::string usage = kUsage;
+  size_t at = command.empty() ? std::string::npos : usage.find("fibra " + command + " ");
+  if (at == std::string::npos || at > usage.find("\n\n")) at = usage.find("fibra run");
+  return usage.substr(at, usage.find('\n', at) - at);
+}
+
 struct Options {
   std::string scene, out, trace;
   int threads = 0;
@@ -380,8 +388,8 @@ int main(int argc, char** argv) {
       throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
     return run(parseRun(argc, argv));
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "fibra: %s\n%.*s(fibra --help for more)\n", e.what(),
-                 int(std::strchr(kUsage, '\n') - kUsage + 1), kUsage);
+    std::fprintf(stderr, "fibra: %s\nusage: %s\n(fibra --help for more)\n", e.what(),
+                 usageLine(command).c_str());
     return kBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());

@@ -143,10 +143,10 @@ int section(int argc, char** argv) {
   p.title = a.get("--title");
   return report([&] {
     const SectionResult r = drawSection(a.runDir, p);
-    std::printf("fibra: wrote %s: %d sections by %c = %g mm at frame %d (t = %g); outlines in "
-                "%s, gnuplot script %s\n",
-                r.png.c_str(), r.sections, "xyz"[r.plane.axis], r.plane.value, r.frame, r.time,
-                r.data.c_str(), r.script.c_str());
+    std::printf("fibra: wrote %s: %d sections by %c = %g mm at frame %d (t = %g)", r.png.c_str(),
+                r.sections, "xyz"[r.plane.axis], r.plane.value, r.frame, r.time);
+    if (r.toolSegments) std::printf(", tools: %d segments", r.toolSegments);
+    std::printf("; outlines in %s, gnuplot script %s\n", r.data.c_str(), r.script.c_str());
   });
 }
 

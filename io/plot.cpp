@@ -228,7 +228,8 @@ void runGnuplot(const std::string& script, const std::string& dir) {
                     "apt-get install gnuplot-nox); the script " + script + " in " + dir +
                     " draws the picture once it is there");
   int pipeFds[2];
-  if (pipe(pipeFds) != 0) throw PlotError("cannot start gnuplot: " + std::string(strerror(errno)));
+  if (pipe2(pipeFds, O_CLOEXEC) != 0)  // close-on-exec: not inherited by other children
+    throw PlotError("cannot start gnuplot: " + std::string(strerror(errno)));
   const Child child{program, script, dir.empty() ? "." : dir};
   const pid_t pid = child.run(pipeFds[1]);
   close(pipeFds[1]);
@@ -250,6 +251,19 @@ void runGnuplot(const std::string& script, const std::string& dir) {
                   std::to_string(code) + "): " + why);
 }
 
+std::string picturePath(const std::string& runDir, const std::string& file,
+                        const std::string& fallback) {
+  fs::path png = file.empty() ? fallback : file;
+  if (png.is_relative()) png = fs::path(runDir) / png;
+  if (png.extension() != ".png")
+    throw PlotInputError(png.string() + ": the picture's name must end in .png");
+  if (png.parent_path().empty()) png = fs::path(".") / png;
+  std::error_code ec;
+  fs::create_directories(png.parent_path(), ec);
+  if (ec) throw PlotError("cannot create '" + png.parent_path().string() + "': " + ec.message());
+  return png.string();
+}
+
 std::string drawCurves(const std::string& runDir, const CurvePlot& plot) {
   const fs::path history = fs::path(runDir) / "history.csv";
   const std::vector<std::string> columns = readHistoryColumns(history.string());
@@ -257,23 +271,22 @@ std::string drawCurves(const std::string& runDir, const CurvePlot& plot) {
   findColumn(columns, plot.x, history.string(), "x");
   for (const std::string& y : plot.y)
     for (const std::string& term : columnTerms(y)) findColumn(columns, term, history.string(), "y");
-  fs::path png = plot.file;
-  if (png.is_relative()) png = fs::path(runDir) / png;
-  if (png.extension() != ".png")
-    throw PlotInputError(png.string() + ": the picture's name must end in .png");
-  const fs::path dir = png.parent_path().empty() ? fs::path(".") : png.parent_path();
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw PlotError("cannot create '" + dir.string() + "': " + ec.message());
-  const std::string text =
-      curveScript(plot, columns, relativeTo(history, dir), png.filename().string());
+  const fs::path png = picturePath(runDir, plot.file);
+  const fs::path dir = png.parent_path();
+  return drawScript(png.string(),
+                    curveScript(plot, columns, relativeTo(history, dir), png.filename().string()));
+}
+
+std::string drawScript(const std::string& pngPath, const std::string& text) {
+  const fs::path png = pngPath;
   fs::path script = png;
   script.replace_extension(".gp");
   OutputFile file(script.string());
   file.stream() << text;
   file.commit();
+  std::error_code ec;
   fs::remove(png, ec);  // so that a picture after the run is this run's
-  runGnuplot(script.filename().string(), dir.string());
+  runGnuplot(script.filename().string(), png.parent_path().string());
   if (!fs::exists(png) || fs::file_size(png) == 0)
     throw PlotError(png.string() + ": gnuplot ran but wrote no picture");
   return script.string();

@@ -85,6 +85,16 @@ void runGnuplot(const std::string& script, const std::string& dir);
 // The full path of the gnuplot program, or "" when there is none.
 std::string findGnuplot();
 
+// Where a picture goes: `file` (`fallback` when empty) taken from RUN_DIR when relative, its
+// folder created; PlotInputError unless it ends in .png, PlotError when the folder cannot be
+// made.
+std::string picturePath(const std::string& runDir, const std::string& file,
+                        const std::string& fallback = "");
+
+// Writes `script` as PNG's FILE.gp and runs gnuplot on it in PNG's folder; PlotError when no
+// picture comes out. Returns the script's path.
+std::string drawScript(const std::string& png, const std::string& script);
+
 // Draws `plot` from RUN_DIR/history.csv: checks the columns, writes the script beside the PNG
 // (FILE.gp), runs gnuplot; returns the script's path.
 std::string drawCurves(const std::string& runDir, const CurvePlot& plot);

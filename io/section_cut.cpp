@@ -1,10 +1,8 @@
 #include "io/section_cut.h"
 
-#include "io/output_file.h"
 #include "io/plot.h"
 
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -17,8 +15,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kAxisName[3] = {"x", "y", "z"};
-
 // A point of fibre `nodes` at s (node index + fraction), linear between nodes.
 template <class F>
 auto along(const std::vector<Index>& nodes, double s, F at) {
@@ -27,13 +23,15 @@ auto along(const std::vector<Index>& nodes, double s, F at) {
   return ((1 - t) * at(nodes[i]) + t * at(nodes[i + 1])).eval();
 }
 
+// The rim point of angle phi at node n: x0 + R (cos phi g1 + sin phi g2), mm.
+Vec3 rimPoint(const FibreFrame& f, Index n, double phi) {
+  return f.x0[n] + f.radius[n] * (std::cos(phi) * f.g1[n] + std::sin(phi) * f.g2[n]);
+}
+
 // The s where the rim line of angle phi meets the plane, nearest to `sc`; NaN when it does not.
 double rimCrossing(const FibreFrame& f, const std::vector<Index>& nodes, const CutPlane& plane,
                    double phi, double sc) {
-  const auto h = [&](Index n) {
-    const Vec3 r = f.x0[n] + f.radius[n] * (std::cos(phi) * f.g1[n] + std::sin(phi) * f.g2[n]);
-    return r[plane.axis] - plane.value;
-  };
+  const auto h = [&](Index n) { return rimPoint(f, n, phi)[plane.axis] - plane.value; };
   double best = std::numeric_limits<double>::quiet_NaN();
   for (size_t i = 0; i + 1 < nodes.size(); ++i) {
     const double a = h(nodes[i]), b = h(nodes[i + 1]);
@@ -52,11 +50,7 @@ SectionOutline cutAt(const FibreFrame& f, Index fibre, const CutPlane& plane, do
     const double phi = 2 * std::numbers::pi * k / sides;
     const double s = rimCrossing(f, nodes, plane, phi, sc);
     if (std::isnan(s)) continue;
-    const auto rim = [&](Index n) {
-      return (f.x0[n] + f.radius[n] * (std::cos(phi) * f.g1[n] + std::sin(phi) * f.g2[n]))
-          .eval();
-    };
-    Vec3 p = along(nodes, s, rim);
+    Vec3 p = along(nodes, s, [&](Index n) { return rimPoint(f, n, phi); });
     p[plane.axis] = plane.value;  // on the plane up to round-off: exactly on it
     out.points.push_back(p);
   }
@@ -70,16 +64,11 @@ const std::vector<double>& array(const VtuArrays& a, const std::string& key, siz
   return it->second;
 }
 
-std::string number(double v) {  // exact, for data and scripts
-  std::string s;
-  appendNumber(s, v);
-  return s;
-}
-
-std::string shortNumber(double v) {  // %g, for titles
-  char text[32];
-  std::snprintf(text, sizeof text, "%g", v);
-  return text;
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 }  // namespace
@@ -126,7 +115,10 @@ FibreFrame fibreFrameFromVtu(const VtuArrays& a) {
     for (size_t k = c ? size_t(offsets[c - 1]) : 0; k < size_t(offsets[c]); ++k)
       fibre.push_back(Index(connectivity[k]));
     if (fibre.size() < 2) throw std::runtime_error("VTU: a fibre with fewer than 2 nodes");
-    for (Index n : fibre) nodes = std::max(nodes, n + 1);
+    for (Index n : fibre) {
+      if (n < 0) throw std::runtime_error("VTU: a negative point index");
+      nodes = std::max(nodes, n + 1);
+    }
   }
   const std::vector<double>& points = array(a, "Points/", 3 * size_t(nodes));
   const std::vector<double>& g1 = array(a, "PointData/g1", 3 * size_t(nodes));
@@ -147,11 +139,10 @@ FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
   if (!in)
     throw PlotInputError(pvd.string() + ": cannot read the frames (is " + runDir +
                          " a fibra run's output directory, with output.vtu on?)");
-  std::ostringstream text;
-  text << in.rdbuf();
+  in.close();
   std::vector<PvdFrame> frames;
   try {
-    frames = readPvdFrames(text.str());
+    frames = readPvdFrames(readText(pvd));
   } catch (const std::runtime_error& e) {
     throw PlotInputError(pvd.string() + ": " + e.what());
   }
@@ -161,13 +152,12 @@ FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
                          " outside 0.." + std::to_string(last) + " (or last)");
   const int k = index < 0 ? last : index;
   const fs::path vtu = fs::path(runDir) / frames[size_t(k)].file;
-  std::ifstream file(vtu, std::ios::binary);
-  if (!file) throw PlotInputError(vtu.string() + ": cannot read frame " + std::to_string(k));
-  std::ostringstream bytes;
-  bytes << file.rdbuf();
+  if (!std::ifstream(vtu))
+    throw PlotInputError(vtu.string() + ": cannot read frame " + std::to_string(k));
   try {
-    FibreFrame f = fibreFrameFromVtu(readVtuArrays(bytes.str()));
+    FibreFrame f = fibreFrameFromVtu(readVtuArrays(readText(vtu)));
     f.time = frames[size_t(k)].time;
+    f.file = vtu.string();
     if (chosen) *chosen = k;
     return f;
   } catch (const std::runtime_error& e) {
@@ -175,100 +165,42 @@ FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
   }
 }
 
-std::string sectionScript(const CutPlane& plane, const std::string& data, const std::string& png,
-                          const std::string& title) {
-  const std::array<int, 2> uv = planeAxes(plane.axis);
-  std::string s = "# fibra section: the fibres cut by the plane " +
-                  std::string(kAxisName[plane.axis]) + " = " + number(plane.value) +
-                  " mm, outlines in " + data + "\n# draw again, in this folder: gnuplot " +
-                  fs::path(png).replace_extension(".gp").string() + "\n";
-  s += pngTerminal(800, 800);
-  s += "set output " + gnuplotString(png) + "\nset size ratio -1\nset grid\nunset key\n";
-  s += "set title " + gnuplotString(title) + "\n";
-  s += "set xlabel " + gnuplotString(std::string(kAxisName[uv[0]]) + " (mm)") + "\n";
-  s += "set ylabel " + gnuplotString(std::string(kAxisName[uv[1]]) + " (mm)") + "\n";
-  s += "plot " + gnuplotString(data) +
-       " using 1:2 with filledcurves closed fillcolor rgb '#9ecae1' fillstyle solid 0.7, \\\n"
-       "     '' using 1:2 with lines linecolor rgb '#08519c' linewidth 1.5\n";
-  return s;
-}
-
-namespace {
-
-// The outlines as gnuplot data: in-plane coordinates (mm), one closed block per section.
-std::string outlineData(const std::vector<SectionOutline>& sections, const CutPlane& plane) {
-  const std::array<int, 2> uv = planeAxes(plane.axis);
-  std::string text = "# " + std::string(kAxisName[uv[0]]) + " " + kAxisName[uv[1]] + " (mm)\n";
-  for (const SectionOutline& s : sections) {
-    text += "# fibre " + std::to_string(s.fibre) + "\n";
-    for (size_t k = 0; k <= s.points.size(); ++k) {
-      const Vec3& p = s.points[k % s.points.size()];  // closed: the first point again
-      text += number(p[uv[0]]) + " " + number(p[uv[1]]) + "\n";
+std::vector<Segment> cutPolygons(const VtuArrays& a, const CutPlane& plane) {
+  const std::vector<double>& offsets = array(a, "Cells/offsets", 0);
+  const std::vector<double>& connectivity =
+      array(a, "Cells/connectivity", offsets.empty() ? 0 : size_t(offsets.back()));
+  const std::vector<double>& points = array(a, "Points/", 0);
+  const auto point = [&](double i) {
+    if (i < 0 || 3 * size_t(i) + 2 >= points.size())
+      throw std::runtime_error("VTU: a point index out of range");
+    return Vec3(points[3 * size_t(i)], points[3 * size_t(i) + 1], points[3 * size_t(i) + 2]);
+  };
+  std::vector<Segment> out;
+  for (size_t c = 0, from = 0; c < offsets.size(); from = size_t(offsets[c++])) {
+    std::vector<Vec3> crossings;  // where the polygon's edges cross the plane
+    for (size_t k = from; k < size_t(offsets[c]); ++k) {
+      const Vec3 p = point(connectivity[k]);
+      const Vec3 q = point(connectivity[k + 1 < size_t(offsets[c]) ? k + 1 : from]);
+      const double hp = p[plane.axis] - plane.value, hq = q[plane.axis] - plane.value;
+      if ((hp < 0) != (hq < 0)) crossings.push_back(p + hp / (hp - hq) * (q - p));
     }
-    text += "\n";
+    if (crossings.size() == 2) out.push_back({crossings[0], crossings[1]});
   }
-  return text;
+  return out;
 }
 
-void writeWhole(const fs::path& path, const std::string& text) {
-  OutputFile file(path.string());
-  file.stream() << text;
-  file.commit();
-}
-
-std::string span(const FibreFrame& f, int axis) {
-  double lo = f.x0[0][axis], hi = lo;
-  for (const Vec3& x : f.x0) {
-    lo = std::min(lo, x[axis]);
-    hi = std::max(hi, x[axis]);
+std::vector<Segment> readToolCut(const std::string& frameFile, const CutPlane& plane) {
+  const std::string name = fs::path(frameFile).filename().string();  // result_0007.vtu
+  const size_t cut = name.rfind('_');
+  if (cut == std::string::npos) return {};
+  const fs::path tools = fs::path(frameFile).parent_path() /
+                         (name.substr(0, cut) + "_tools" + name.substr(cut));
+  if (!fs::exists(tools)) return {};
+  try {
+    return cutPolygons(readVtuArrays(readText(tools)), plane);
+  } catch (const std::runtime_error& e) {
+    throw PlotInputError(tools.string() + ": " + e.what());
   }
-  return shortNumber(lo) + " to " + shortNumber(hi);
-}
-
-}  // namespace
-
-SectionResult drawSection(const std::string& runDir, const SectionPlot& plot) {
-  SectionResult r;
-  const FibreFrame frame = readFibreFrame(runDir, plot.frame, &r.frame);
-  r.plane = medianPlane(frame, plot.axis);
-  if (plot.value) r.plane.value = *plot.value;
-  r.time = frame.time;
-  const std::vector<SectionOutline> sections = cutSections(frame, r.plane, plot.sides);
-  const std::string where =
-      std::string(kAxisName[r.plane.axis]) + " = " + shortNumber(r.plane.value);
-  if (sections.empty())
-    throw PlotInputError(runDir + ": frame " + std::to_string(r.frame) + ": the plane " + where +
-                         " mm cuts no fibre (the nodes span " + kAxisName[r.plane.axis] +
-                         " = " + span(frame, r.plane.axis) + " mm)");
-  r.sections = int(sections.size());
-  fs::path png = plot.file.empty() ? fs::path("section.png") : fs::path(plot.file);
-  if (png.is_relative()) png = fs::path(runDir) / png;
-  if (png.extension() != ".png")
-    throw PlotInputError(png.string() + ": the picture's name must end in .png");
-  const fs::path dir = png.parent_path().empty() ? fs::path(".") : png.parent_path();
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw PlotError("cannot create '" + dir.string() + "': " + ec.message());
-  fs::path data = png, script = png;
-  data.replace_extension(".dat");
-  script.replace_extension(".gp");
-  const std::string title =
-      !plot.title.empty() ? plot.title
-                          : "fibres cut by " + where + " mm, frame " + std::to_string(r.frame) +
-                                ", t = " + shortNumber(r.time) + ", " +
-                                std::to_string(r.sections) +
-                                " sections";
-  writeWhole(data, outlineData(sections, r.plane));
-  writeWhole(script, sectionScript(r.plane, data.filename().string(), png.filename().string(),
-                                   title));
-  fs::remove(png, ec);  // so that a picture after the run is this run's
-  runGnuplot(script.filename().string(), dir.string());
-  if (!fs::exists(png) || fs::file_size(png) == 0)
-    throw PlotError(png.string() + ": gnuplot ran but wrote no picture");
-  r.png = png.string();
-  r.script = script.string();
-  r.data = data.string();
-  return r;
 }
 
 }  // namespace fibra

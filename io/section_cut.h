@@ -33,6 +33,7 @@ struct FibreFrame {
   std::vector<double> radius;            // per node, mm
   std::vector<std::vector<Index>> fibres;  // per fibre its nodes, in order
   double time = 0;                       // pseudo-time
+  std::string file;                      // the VTU file read ("" when built in code)
 };
 
 // The plane x[axis] = value (axis 0, 1, 2 for x, y, z; value in mm).
@@ -69,6 +70,17 @@ FibreFrame fibreFrameFromVtu(const VtuArrays& arrays);
 // has no frames or `index` is out of range. `chosen` receives the frame's index.
 FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen = nullptr);
 
+// Where the plane cuts the polygons of a VTU file's arrays (a tool's surface): one segment per
+// polygon whose edges cross the plane twice (mm).
+struct Segment {
+  Vec3 a, b;
+};
+std::vector<Segment> cutPolygons(const VtuArrays& arrays, const CutPlane& plane);
+
+// The tools of a frame cut by the plane: the series' tool file beside the fibres' VTU
+// (result_tools_NNNN.vtu for result_NNNN.vtu); empty when the run has no tools.
+std::vector<Segment> readToolCut(const std::string& frameFile, const CutPlane& plane);
+
 // A section picture.
 struct SectionPlot {
   int axis = -1;                  // 0, 1, 2 (x, y, z); -1: the axis the nodes spread most along
@@ -85,16 +97,24 @@ struct SectionResult {
   int frame = 0;
   double time = 0;
   int sections = 0;
+  int toolSegments = 0;  // pieces of the tools' surfaces in the plane, drawn as grey lines
 };
 
-// The gnuplot script drawing the outlines in `data` (one block per section, blank lines
-// between) with equal axis scales.
-std::string sectionScript(const CutPlane& plane, const std::string& data, const std::string& png,
-                          const std::string& title);
+// What a section picture shows: the in-plane ranges (mm; the sections' box with a margin, so
+// that large tools do not shrink the fibres) and whether there are tool segments.
+struct SectionView {
+  std::array<double, 2> lo{}, hi{};
+  bool tools = false;
+};
 
-// Cuts frame `plot.frame` of RUN_DIR and draws it: writes FILE.dat (the outlines, in-plane
-// coordinates in mm) and FILE.gp beside the PNG and runs gnuplot (io/plot.h). PlotInputError
-// when no fibre crosses the plane.
+// The gnuplot script drawing `data`: index 0 the outlines (one block per section, blank lines
+// between), index 1 the tool segments, with equal axis scales.
+std::string sectionScript(const CutPlane& plane, const std::string& data, const std::string& png,
+                          const std::string& title, const SectionView& view);
+
+// Cuts frame `plot.frame` of RUN_DIR and draws it: writes FILE.dat (the outlines and the tool
+// segments, in-plane coordinates in mm) and FILE.gp beside the PNG and runs gnuplot
+// (io/plot.h). PlotInputError when no fibre crosses the plane.
 SectionResult drawSection(const std::string& runDir, const SectionPlot& plot);
 
 }  // namespace fibra

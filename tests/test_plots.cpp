@@ -155,6 +155,18 @@ TEST_CASE("plot: the gnuplot script quotes user strings and draws the chosen col
                   PlotInputError);
 }
 
+TEST_CASE("section: the script draws outlines and tools with equal scales in the box") {
+  const SectionView view{{-1, -2}, {1, 2}, true};
+  const std::string s = sectionScript(CutPlane{0, 0.5}, "cut.dat", "cut.png", "a 'cut'", view);
+  CHECK(contains(s, "set size ratio -1\n"));
+  CHECK(contains(s, "set title 'a ''cut'''\n"));
+  CHECK(contains(s, "set xlabel 'y (mm)'\nset ylabel 'z (mm)'\n"));
+  CHECK(contains(s, "set xrange [-1:1]\nset yrange [-2:2]\n"));
+  CHECK(contains(s, "plot 'cut.dat' index 0 using 1:2 with filledcurves closed"));
+  CHECK(contains(s, "'' index 1 using 1:2 with lines"));
+  CHECK(!contains(sectionScript(CutPlane{}, "c.dat", "c.png", "", SectionView{}), "index 1"));
+}
+
 TEST_CASE("section: a round fibre normal to the plane is cut in a circle of radius R") {
   const double R = 0.1;
   const FibreFrame f = straightFibre({1, 2, 3}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, R);
@@ -228,6 +240,37 @@ TEST_CASE("section: fibres that do not reach the plane have no section, a bent o
   CHECK(medianPlane(u, 0).value == doctest::Approx(0.5));
 }
 
+TEST_CASE("section: a tool's surface quads are cut in segments, the fibres read from a VTU") {
+  // Two quads: one across z = 0 (x from 0 to 2, z from -1 to 1), one above it.
+  VtuArrays a;
+  a["Points/"] = {0, 0, -1, 2, 0, -1, 2, 0, 1, 0, 0, 1, 0, 0, 2, 1, 0, 2, 1, 0, 3, 0, 0, 3};
+  a["Cells/connectivity"] = {0, 1, 2, 3, 4, 5, 6, 7};
+  a["Cells/offsets"] = {4, 8};
+  a["Cells/types"] = {9, 9};
+  const std::vector<Segment> cut = cutPolygons(a, CutPlane{2, 0.0});
+  REQUIRE(cut.size() == 1);
+  CHECK(std::abs(std::min(cut[0].a.x(), cut[0].b.x())) < 1e-12);
+  CHECK(std::max(cut[0].a.x(), cut[0].b.x()) == doctest::Approx(2));
+  CHECK(std::abs(cut[0].a.z()) < 1e-12);
+  CHECK(std::abs(cut[0].b.z()) < 1e-12);
+  // A fibre as the VTU holds it: a poly-line (type 4) over nodes 0..2, then its surface.
+  VtuArrays v;
+  v["Points/"] = {0, 0, 0, 0, 0, 1, 0, 0, 2, 9, 9, 9};
+  v["PointData/g1"] = {1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0};
+  v["PointData/g2"] = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0};
+  v["PointData/radius"] = {0.1, 0.1, 0.1, 0.1};
+  v["Cells/connectivity"] = {0, 1, 2, 3};
+  v["Cells/offsets"] = {3, 4};
+  v["Cells/types"] = {4, 1};
+  const FibreFrame f = fibreFrameFromVtu(v);
+  REQUIRE(f.fibres.size() == 1);
+  CHECK(f.fibres[0] == std::vector<Index>{0, 1, 2});
+  CHECK(f.x0.size() == 3);
+  CHECK(cutSections(f, CutPlane{2, 1.5}, 8).size() == 1);
+  v.erase("PointData/g2");
+  CHECK(contains(messageOf([&] { fibreFrameFromVtu(v); }), "no array PointData/g2"));
+}
+
 TEST_CASE("output.plots: bad entries are refused at load time, unknown columns before solving") {
   TempDir dir("plot_scene_errors");
   const auto check = [&](const Json& plots) {
@@ -283,6 +326,7 @@ TEST_CASE("plot and section: gnuplot missing or bad usage are clear errors") {
     const RunResult r = runFibra(args, dir);
     CHECK_MESSAGE(r.status == 2, r.output);
     CHECK_MESSAGE(contains(r.output, message), r.output);
+    CHECK_MESSAGE(contains(r.output, "\nusage: fibra " + args[0] + " RUN_DIR"), r.output);
   }
   // Bad input: exit 2 naming the file.
   RunResult r = runFibra({"plot", dir / "run", "--x", "time", "--y", "probe.tip.q"}, dir);
