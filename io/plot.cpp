@@ -135,6 +135,7 @@ std::string columnUnit(const std::string& n) {
   if (forceOwner && endsWithAny(n, {".fx", ".fy", ".fz"})) return "N";
   if (n.starts_with("reaction.") && endsWithAny(n, {".mx", ".my", ".mz"})) return "N mm";
   if (n.starts_with("probe.") && endsWithAny(n, {".x", ".y", ".z"})) return "mm";
+  if (n.starts_with("tool.") && endsWithAny(n, {".ux", ".uy", ".uz"})) return "mm";
   return "";  // counts, ratios, pseudo-time, and names not in the table
 }
 

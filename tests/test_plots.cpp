@@ -106,6 +106,7 @@ TEST_CASE("plot: axis labels carry the units of known columns and none for unkno
   CHECK(columnUnit("reaction.beam.end.fy") == "N");
   CHECK(columnUnit("reaction.B#2.mz") == "N mm");
   CHECK(columnUnit("tool.top.fy") == "N");
+  CHECK(columnUnit("tool.top.uy") == "mm");
   CHECK(columnUnit("probe.tip.z") == "mm");
   CHECK(columnUnit("energy.friction") == "N mm");
   CHECK(columnUnit("contact.max_penetration") == "mm");
@@ -269,6 +270,35 @@ TEST_CASE("section: a tool's surface quads are cut in segments, the fibres read 
   CHECK(cutSections(f, CutPlane{2, 1.5}, 8).size() == 1);
   v.erase("PointData/g2");
   CHECK(contains(messageOf([&] { fibreFrameFromVtu(v); }), "no array PointData/g2"));
+}
+
+TEST_CASE("history: a tool's displacement columns follow its motion, in mm on the axis") {
+  TempDir dir("plot_tool_motion");
+  const std::string scene = tinyScene(dir, Json::object());
+  Json s = Json::parse(readFile(scene));
+  s["tools"] = Json::array({{{"name", "far"}, {"type", "plane"}, {"point", {0, 5, 0}},
+                             {"normal", {0, -1, 0}}, {"displacement", {0, 2, 0.5}},
+                             {"table", "ramp"}}});
+  writeFile(scene, s.dump());
+  const RunResult r = runFibra({"run", scene, "--out", dir / "run", "--quiet"}, dir);
+  REQUIRE_MESSAGE(r.status == 0, r.output);
+  const auto rows = readCsv(dir / "run/history.csv");
+  const auto& header = rows.at(0);
+  const auto at = [&](const std::string& name) {
+    const size_t c = size_t(std::find(header.begin(), header.end(), name) - header.begin());
+    REQUIRE_MESSAGE(c < header.size(), name);
+    return c;
+  };
+  const size_t t = at("time"), ux = at("tool.far.ux"), uy = at("tool.far.uy"),
+               uz = at("tool.far.uz");
+  REQUIRE(rows.size() == 4);
+  for (size_t i = 1; i < rows.size(); ++i) {
+    const double time = std::stod(rows[i][t]);  // the ramp table: the factor is the time
+    CHECK(std::stod(rows[i][ux]) == 0.0);
+    CHECK(std::stod(rows[i][uy]) == doctest::Approx(2 * time));
+    CHECK(std::stod(rows[i][uz]) == doctest::Approx(0.5 * time));
+  }
+  CHECK(axisLabel("tool.far.uy") == "tool.far.uy (mm)");
 }
 
 TEST_CASE("output.plots: bad entries are refused at load time, unknown columns before solving") {
