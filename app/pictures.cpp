@@ -92,17 +92,43 @@ void parsePlane(const std::string& text, SectionPlot& plot) {
 }
 
 int parseFrame(const std::string& text) {
-  if (text.empty() || text == "last") return -1;
+  if (text == "last") return -1;
   size_t used = 0;
   int v = -1;
   try {
     v = std::stoi(text, &used);
   } catch (const std::exception&) {
   }
-  if (used != text.size() || v < 0)
-    throw std::invalid_argument("--frame: expected a frame number (0, 1, ...) or last, got '" +
+  if (text.empty() || used != text.size() || v < 0)
+    throw std::invalid_argument("--frame: expected frame numbers (0, 1, ...) or last, got '" +
                                 text + "'");
   return v;
+}
+
+// "0,12,last" -> {0, 12, -1}; none given: the last.
+std::vector<int> parseFrames(const std::string& text) {
+  if (text.empty()) return {-1};
+  std::vector<int> frames;
+  size_t from = 0;
+  for (size_t comma; (comma = text.find(',', from)) != std::string::npos; from = comma + 1)
+    frames.push_back(parseFrame(text.substr(from, comma - from)));
+  frames.push_back(parseFrame(text.substr(from)));
+  return frames;
+}
+
+// FILE.png for one frame, FILE_NNNN.png (the frame's index) for each of several.
+std::string framePng(const std::string& png, int frame, size_t count) {
+  if (count == 1) return png;
+  char suffix[24];
+  std::snprintf(suffix, sizeof suffix, "_%04d.png", frame);
+  return (fs::path(png).replace_extension("").string()) + suffix;
+}
+
+void printSection(const SectionResult& r) {
+  std::printf("fibra: wrote %s: %d sections by %c = %g mm at frame %d (t = %g)", r.png.c_str(),
+              r.sections, "xyz"[r.plane.axis], r.plane.value, r.frame, r.time);
+  if (r.toolSegments) std::printf(", tools: %d segments", r.toolSegments);
+  std::printf("; outlines in %s, gnuplot script %s\n", r.data.c_str(), r.script.c_str());
 }
 
 // Runs `draw`, reporting a PlotError as exit 1 and a PlotInputError as exit 2.
@@ -137,16 +163,20 @@ int plot(int argc, char** argv) {
 int section(int argc, char** argv) {
   const Arguments a = parse(argc, argv, {"--plane", "--frame", "--out", "--title"});
   SectionPlot p;
-  if (!a.get("--plane").empty() || a.values.count("--plane")) parsePlane(a.get("--plane"), p);
-  p.frame = parseFrame(a.get("--frame"));
-  p.file = pngPath(a, "section.png");
+  if (a.values.count("--plane")) parsePlane(a.get("--plane"), p);
+  const std::vector<int> frames = parseFrames(a.get("--frame"));
+  const std::string png = pngPath(a, "section.png");
   p.title = a.get("--title");
   return report([&] {
-    const SectionResult r = drawSection(a.runDir, p);
-    std::printf("fibra: wrote %s: %d sections by %c = %g mm at frame %d (t = %g)", r.png.c_str(),
-                r.sections, "xyz"[r.plane.axis], r.plane.value, r.frame, r.time);
-    if (r.toolSegments) std::printf(", tools: %d segments", r.toolSegments);
-    std::printf("; outlines in %s, gnuplot script %s\n", r.data.c_str(), r.script.c_str());
+    const int count = int(readRunFrames(a.runDir).size());
+    for (const int frame : frames) {
+      p.frame = frame;
+      p.file = framePng(png, frame < 0 ? count - 1 : frame, frames.size());
+      const SectionResult r = drawSection(a.runDir, p);
+      p.axis = r.plane.axis;  // the stages of a run are cut by one plane: the first frame's
+      p.value = r.plane.value;
+      printSection(r);
+    }
   });
 }
 

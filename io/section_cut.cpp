@@ -133,19 +133,21 @@ FibreFrame fibreFrameFromVtu(const VtuArrays& a) {
   return f;
 }
 
-FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
+std::vector<PvdFrame> readRunFrames(const std::string& runDir) {
   const fs::path pvd = fs::path(runDir) / "result.pvd";
-  std::ifstream in(pvd);
-  if (!in)
+  if (!std::ifstream(pvd))
     throw PlotInputError(pvd.string() + ": cannot read the frames (is " + runDir +
                          " a fibra run's output directory, with output.vtu on?)");
-  in.close();
-  std::vector<PvdFrame> frames;
   try {
-    frames = readPvdFrames(readText(pvd));
+    return readPvdFrames(readText(pvd));
   } catch (const std::runtime_error& e) {
     throw PlotInputError(pvd.string() + ": " + e.what());
   }
+}
+
+FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
+  const fs::path pvd = fs::path(runDir) / "result.pvd";
+  const std::vector<PvdFrame> frames = readRunFrames(runDir);
   const int last = int(frames.size()) - 1;
   if (index < -1 || index > last)
     throw PlotInputError(pvd.string() + ": --frame: " + std::to_string(index) +

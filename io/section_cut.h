@@ -66,6 +66,9 @@ std::array<int, 2> planeAxes(int axis);
 // poly-line cells of part 0. std::runtime_error when arrays are missing or inconsistent.
 FibreFrame fibreFrameFromVtu(const VtuArrays& arrays);
 
+// The frames of RUN_DIR/result.pvd (part 0); PlotInputError when there are none.
+std::vector<PvdFrame> readRunFrames(const std::string& runDir);
+
 // Frame `index` (0-based, -1 for the last) of RUN_DIR/result.pvd; PlotInputError when the run
 // has no frames or `index` is out of range. `chosen` receives the frame's index.
 FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen = nullptr);

@@ -351,7 +351,7 @@ TEST_CASE("plot and section: gnuplot missing or bad usage are clear errors") {
            {{"plot", "--x", "time", "--y", "iterations"}, "plot: missing the run directory"},
            {{"section", dir / "run", "--plane", "w=1"}, "--plane: expected x, y or z"},
            {{"section", dir / "run", "--plane", "z=abc"}, "--plane: expected x, y or z"},
-           {{"section", dir / "run", "--frame", "-2"}, "--frame: expected a frame number"},
+           {{"section", dir / "run", "--frame", "-2"}, "--frame: expected frame numbers"},
            {{"section", dir / "run", "--colour", "red"}, "section: unknown option '--colour'"}}) {
     const RunResult r = runFibra(args, dir);
     CHECK_MESSAGE(r.status == 2, r.output);
@@ -418,4 +418,10 @@ TEST_CASE("plot and section: gnuplot draws PNGs of a tiny run (skipped without g
   CHECK(contains(r.output, "1 sections by x = 5 mm at frame 1"));
   CHECK(isPng(dir / "cut.png"));
   CHECK(contains(readFile(dir / "cut.gp"), "set size ratio -1"));
+  // Stages: one picture per frame, named by the frame's index.
+  r = runFibra({"section", dir / "run", "--frame", "0,last", "--out", dir / "stage.png"}, dir);
+  CHECK_MESSAGE(r.status == 0, r.output);
+  CHECK(isPng(dir / "stage_0000.png"));
+  CHECK(isPng(dir / "stage_0003.png"));
+  CHECK(!fs::exists(dir / "stage.png"));
 }
