@@ -33,9 +33,10 @@ std::string listOf(const std::vector<std::string>& names) {
 
 // The history file as gnuplot sees it from `pngDir`: relative when both are on one tree.
 std::string relativeTo(const fs::path& file, const fs::path& pngDir) {
-  const fs::path rel = fs::absolute(file).lexically_normal().lexically_relative(
-      fs::absolute(pngDir).lexically_normal());
-  return rel.empty() ? fs::absolute(file).string() : rel.string();
+  const fs::path from = fs::weakly_canonical(fs::absolute(pngDir)),
+                 to = fs::weakly_canonical(fs::absolute(file));
+  const fs::path rel = to.lexically_relative(from);
+  return rel.empty() ? to.string() : rel.string();
 }
 
 // argv[0] and the script for execv, as C strings built before fork (the child only calls
@@ -224,9 +225,10 @@ std::string findGnuplot() {
 
 void runGnuplot(const std::string& script, const std::string& dir) {
   const std::string program = findGnuplot();
+  const std::string where = (fs::path(dir) / script).lexically_normal().string();
   if (program.empty())
     throw PlotError("gnuplot not found (PATH, or FIBRA_GNUPLOT when set): install it (Debian: "
-                    "apt-get install gnuplot-nox); the script " + script + " in " + dir +
+                    "apt-get install gnuplot-nox); the script " + where +
                     " draws the picture once it is there");
   int pipeFds[2];
   if (pipe2(pipeFds, O_CLOEXEC) != 0)  // close-on-exec: not inherited by other children
@@ -247,8 +249,9 @@ void runGnuplot(const std::string& script, const std::string& dir) {
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   const std::string why = code == 126   ? "cannot enter the folder " + dir
                           : code == 127 ? "cannot execute " + program
-                                        : lastLines(messages, 600);
-  throw PlotError(program + " failed on " + (fs::path(dir) / script).string() + " (exit " +
+                          : messages.empty() ? std::string("no message")
+                                             : lastLines(messages, 600);
+  throw PlotError(program + " failed on " + where + " (exit " +
                   std::to_string(code) + "): " + why);
 }
 
@@ -287,7 +290,8 @@ std::string drawScript(const std::string& pngPath, const std::string& text) {
   file.commit();
   std::error_code ec;
   fs::remove(png, ec);  // so that a picture after the run is this run's
-  runGnuplot(script.filename().string(), png.parent_path().string());
+  // "./NAME": a name starting with '-' is not taken for an option
+  runGnuplot("./" + script.filename().string(), png.parent_path().string());
   if (!fs::exists(png) || fs::file_size(png) == 0)
     throw PlotError(png.string() + ": gnuplot ran but wrote no picture");
   return script.string();

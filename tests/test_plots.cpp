@@ -386,6 +386,17 @@ TEST_CASE("plot and section: gnuplot missing or bad usage are clear errors") {
   CHECK(!fs::exists(dir / "tip.png"));
   CHECK(s.status == 1);
   CHECK(contains(s.output, "gnuplot not found"));
+  // A gnuplot that fails: exit 1 with its messages.
+  writeFile(dir / "failing-gnuplot", "#!/bin/sh\necho \"line 3: undefined variable: x\" >&2\nexit 1\n");
+  fs::permissions(dir / "failing-gnuplot", fs::perms::owner_all);
+  ::setenv("FIBRA_GNUPLOT", (dir / "failing-gnuplot").c_str(), 1);
+  r = runFibra({"plot", dir / "run", "--x", "time", "--y", "iterations"}, dir);
+  ::unsetenv("FIBRA_GNUPLOT");
+  CHECK(r.status == 1);
+  CHECK_MESSAGE(contains(r.output, "failing-gnuplot failed on " +
+                                       (dir.path() / "run" / "iterations_vs_time.gp").string() +
+                                       " (exit 1): line 3: undefined variable: x"),
+                r.output);
   CHECK(fs::exists(dir.path() / "run" / "section.dat"));
 }
 
@@ -411,6 +422,13 @@ TEST_CASE("plot and section: gnuplot draws PNGs of a tiny run (skipped without g
                dir);
   CHECK_MESSAGE(r.status == 0, r.output);
   CHECK(isPng((dir.path() / "run" / "probe.tip.x_vs_time.png").string()));
+  // A picture named like an option, in a folder of its own, is still a file for gnuplot.
+  r = runFibra({"plot", dir / "run", "--x", "time", "--y", "iterations", "--out",
+                dir / "pictures/-v.png"},
+               dir);
+  CHECK_MESSAGE(r.status == 0, r.output);
+  CHECK(isPng(dir / "pictures/-v.png"));
+  CHECK(contains(readFile(dir / "pictures/-v.gp"), "plot '../run/history.csv' skip 1"));
   r = runFibra({"section", dir / "run", "--plane", "x=5", "--frame", "1", "--out",
                 dir / "cut.png"},
                dir);
