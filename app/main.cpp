@@ -5,6 +5,8 @@
 //   fibra check SCENE.json                     validate, print the problem's size, no solve
 //   fibra describe SCENE.json                  the stages of an iteration, as Markdown
 //   fibra expand SCENE.json [--out FILE]       the scene with its generators expanded
+//   fibra plot RUN_DIR --x C --y C[,C...]      history curves as a PNG (app/pictures.h)
+//   fibra section RUN_DIR [--plane z=VALUE]    the fibres' cross-sections as a PNG
 //   fibra --version
 //
 // Order of work: the scene is loaded, validated and the World built before anything is
@@ -22,6 +24,7 @@
 // SIGINT and SIGTERM set the program's one process-level flag; the World polls it through its
 // cancel callback between Newton iterations and returns the last converged state. A second
 // signal kills the program at once.
+#include "app/pictures.h"
 #include "app/terminal.h"
 #include "engine/world.h"
 #include "fibra/version.h"
@@ -64,6 +67,9 @@ const char* const kUsage =
     "       fibra check SCENE.json\n"
     "       fibra describe SCENE.json\n"
     "       fibra expand SCENE.json [--out FILE]\n"
+    "       fibra plot RUN_DIR --x COLUMN --y COLUMN[,COLUMN...] [--out FILE.png] [--title T]\n"
+    "       fibra section RUN_DIR [--plane AXIS[=VALUE]] [--frame N[,N...]|last]\n"
+    "                     [--out FILE.png] [--title T]\n"
     "       fibra --version | --help\n"
     "\n"
     "run: solves the scene (format: docs/SCENE.md) and writes into DIR (created if needed; the\n"
@@ -77,6 +83,12 @@ const char* const kUsage =
     "stores it reads and writes, the systems it waits for (docs/ARCHITECTURE.md).\n"
     "expand: writes the scene with its generators expanded as plain JSON (to FILE, else to\n"
     "stdout); it loads to the same scene (docs/SCENE.md, Generators).\n"
+    "plot: draws history columns of a run (RUN_DIR/history.csv) against one another with\n"
+    "gnuplot: FILE.png (default RUN_DIR/Y_vs_X.png) and its script FILE.gp (docs/PLOTS.md).\n"
+    "section: cuts the fibres of a frame (default: the last) by the plane AXIS = VALUE (default:\n"
+    "normal to the fibres' longest span, at its middle) and draws the sections: FILE.png\n"
+    "(default RUN_DIR/section.png; FILE_NNNN.png per frame for several frames), the outlines\n"
+    "FILE.dat, the script FILE.gp.\n"
     "Options of run:\n"
     "  --out DIR         output directory (required)\n"
     "  --threads N       worker threads (default: all cores)\n"
@@ -89,6 +101,14 @@ const char* const kUsage =
     "Exit status: 0 solved, 1 an increment failed or output failed, 2 bad usage or scene,\n"
     "130 interrupted (Ctrl-C), 143 terminated (SIGTERM; `timeout` then reports its own 124);\n"
     "the last converged state and the history are written (for viewing: no resume).\n";
+
+// The usage line of `command` ("fibra plot RUN_DIR ..."), or of run for any other.
+std::string usageLine(const std::string& command) {
+  const std::string usage = kUsage;
+  size_t at = command.empty() ? std::string::npos : usage.find("fibra " + command + " ");
+  if (at == std::string::npos || at > usage.find("\n\n")) at = usage.find("fibra run");
+  return usage.substr(at, usage.find('\n', at) - at);
+}
 
 struct Options {
   std::string scene, out, trace;
@@ -186,6 +206,16 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The run's last files, and the scene's plots: a plot not drawn is a warning, not a failure.
+void finishOutputs(const World& world, Outputs& outputs, Verbosity verbosity) {
+  outputs.finish(world);
+  for (const std::string& message : outputs.plotMessages())
+    std::fprintf(stderr, "fibra: warning: plot not drawn: %s\n", message.c_str());
+  if (verbosity != Verbosity::Quiet)
+    for (const std::string& png : outputs.plotsDrawn())
+      std::fprintf(stderr, "fibra: plot %s\n", png.c_str());
+}
+
 // Solves every increment; returns the exit status.
 int solve(World& world, Outputs& outputs, Verbosity verbosity) {
   const SceneDef& scene = world.scene();
@@ -215,7 +245,7 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
     cutbacks += r.status == StepStatus::Failed
                     ? std::min(r.cutbacks, scene.steps[size_t(r.step)].maxCutbacks)
                     : r.cutbacks;
-    outputs.finish(world);
+    finishOutputs(world, outputs, verbosity);
     if (r.status == StepStatus::Cancelled) {
       const int signal = stopSignal.load();
       summary(signal == SIGTERM ? "terminated (SIGTERM), wrote the last converged state"
@@ -227,7 +257,7 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
     summary("failed, wrote the last converged state");
     return kFailed;
   }
-  outputs.finish(world);
+  finishOutputs(world, outputs, verbosity);
   summary("solved");
   return kSolved;
 }
@@ -245,7 +275,9 @@ void writeTrace(const Trace& trace, const std::string& path) {
 std::unique_ptr<World> buildWorld(const std::string& path, WorldDef def) {
   const SceneDef scene = loadScene(path);  // its errors name the file
   try {
-    return std::make_unique<World>(scene, def);
+    auto world = std::make_unique<World>(scene, def);
+    checkScenePlots(*world);  // the plots' columns, known once the World is built
+    return world;
   } catch (const SceneError& e) {
     throw SceneError(path + ": " + e.what());
   }
@@ -352,12 +384,17 @@ int main(int argc, char** argv) {
     if (command == "describe" || command == "check")
       return inspect(argc, argv, command == "describe");
     if (command == "expand") return expand(argc, argv);
+    if (command == "plot" || command == "section") try {
+        return command == "plot" ? pictures::plot(argc, argv) : pictures::section(argc, argv);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
     if (command != "run")
       throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
     return run(parseRun(argc, argv));
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "fibra: %s\n%.*s(fibra --help for more)\n", e.what(),
-                 int(std::strchr(kUsage, '\n') - kUsage + 1), kUsage);
+    std::fprintf(stderr, "fibra: %s\nusage: %s\n(fibra --help for more)\n", e.what(),
+                 usageLine(command).c_str());
     return kBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());

@@ -141,6 +141,15 @@ struct ProbeDef {
 
 enum class VtuEncoding { Binary, Ascii };  // zlib-compressed appended data, or XML text
 
+// A picture drawn at the end of a run (io/plot.h): history columns y against column x, as the
+// PNG `file` in the output directory (a plain file name ending in .png).
+struct PlotDef {
+  std::string x;
+  std::vector<std::string> y;
+  std::string file;
+  std::string title;  // "" for none
+};
+
 struct OutputDef {
   bool vtu = true;                      // ParaView series
   VtuEncoding vtuEncoding = VtuEncoding::Binary;
@@ -148,6 +157,7 @@ struct OutputDef {
   bool finalState = true;               // every node's x0, g1, g2 at the end
   Vec3 momentPoint = Vec3::Zero();      // reactions' moments are taken about this point, mm
   std::vector<ProbeDef> probes;
+  std::vector<PlotDef> plots;           // PNGs of history columns, drawn at the end
 };
 
 // Contact parameters. Detection (paper section 3) and mechanics (section 4). NaN means "derive

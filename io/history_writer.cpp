@@ -1,5 +1,7 @@
 #include "io/history_writer.h"
 
+#include "systems/tool_geometry.h"
+
 #include <algorithm>
 #include <map>
 #include <set>
@@ -67,10 +69,15 @@ HistoryColumns reactionColumns(const World& world) {
 HistoryColumns toolColumns(const World& world) {
   HistoryColumns c;
   for (const ToolDef& t : world.scene().tools)
-    addNames(c.names, "tool." + t.name, {"fx", "fy", "fz"});
+    addNames(c.names, "tool." + t.name, {"fx", "fy", "fz", "ux", "uy", "uz"});
   const Index count = Index(world.scene().tools.size());
-  c.values = [count](const World& w, const StepReport&, std::vector<double>& row) {
-    for (Index t = 0; t < count; ++t) appendVec(row, w.toolReaction(t));
+  c.values = [count](const World& w, const StepReport& r, std::vector<double>& row) {
+    const ToolStore& tools = w.tools();
+    for (Index t = 0; t < count; ++t) {
+      appendVec(row, w.toolReaction(t));
+      const Vec3& point = tools.point[t];
+      appendVec(row, toolMotion(tools, t, r.time)(point) - point);
+    }
   };
   return c;
 }

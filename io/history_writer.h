@@ -48,7 +48,8 @@ HistoryColumns incrementColumns();
 // output.moment_point), World::reaction: what the held DOFs exert on the fibres, balancing the
 // loads. G is the group ("G#i" for boundary condition i when groups repeat).
 HistoryColumns reactionColumns(const World& world);
-// Per tool T: tool.T.fx .fy .fz, the force the fibres exert on it (N).
+// Per tool T: tool.T.fx .fy .fz, the force the fibres exert on it (N), and tool.T.ux .uy .uz,
+// the displacement of its point (the scene's `point`) by its motion since t = 0 (mm).
 HistoryColumns toolColumns(const World& world);
 // With contact or tools: contact.zones, .elements, .tool_elements, .active, .sliding (counts),
 // .max_penetration (mm), .max_penetration_ratio (of p_max), .detection_loops, .normal_loops,

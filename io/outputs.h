@@ -14,7 +14,8 @@
 // Files in DIR (docs/SCENE.md, "What fibra run writes"): result.pvd with result_NNNN.vtu (the
 // fibres, part 0), result_contacts_NNNN.vtu (contact elements, part 1, with contact or tools) and
 // result_tools_NNNN.vtu (the tools' surfaces, part 2, with tools); history.csv (one row per
-// converged increment; history.csv.part until finish()); final_state.csv. Every file appears
+// converged increment; history.csv.part until finish()); final_state.csv; the PNGs of
+// output.plots with their gnuplot scripts (NAME.gp). Every file appears
 // whole or not at all (io/output_file.h). Serial: call from one thread, between world.step()
 // calls (not concurrently with them). Errors: std::runtime_error when a file cannot be written.
 #pragma once
@@ -29,6 +30,10 @@
 #include <vector>
 
 namespace fibra {
+
+// The history columns the scene's output.plots name, checked against the columns this World's
+// history will have (before solving); SceneError "output.plots[i].y[k]: unknown column ...".
+void checkScenePlots(const World& world);
 
 // Removes from `dir` the files a run of fibra writes there (result.pvd, result_*.vtu,
 // history.csv, final_state.csv and their .part files) and nothing else; returns how many. A
@@ -48,8 +53,14 @@ class Outputs {
   // output_every-th one of its step or the step's last.
   void increment(const World& world, const StepReport& report);
   // At the end of a run (solved, failed or cancelled): the last converged state as a frame
-  // (unless it has one), final_state.csv, and history.csv closed (renamed from .part).
+  // (unless it has one), final_state.csv, history.csv closed (renamed from .part), then the
+  // scene's output.plots drawn (io/plot.h); a plot that cannot be drawn (no gnuplot, no row)
+  // does not stop the others: its message is in plotMessages().
   void finish(const World& world);
+  // "output.plots[i] (FILE): what went wrong", one per plot not drawn by finish().
+  const std::vector<std::string>& plotMessages() const { return plotMessages_; }
+  // The PNGs finish() drew.
+  const std::vector<std::string>& plotsDrawn() const { return plotsDrawn_; }
 
   int frames() const;                       // VTU frames written so far
   const std::string& dir() const { return dir_; }
@@ -61,6 +72,7 @@ class Outputs {
   std::optional<VtuSeries> vtu_;
   std::optional<HistoryWriter> history_;
   double framed_ = -1;  // pseudo-time of the last frame
+  std::vector<std::string> plotMessages_, plotsDrawn_;
 };
 
 }  // namespace fibra

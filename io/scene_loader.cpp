@@ -145,9 +145,22 @@ StepDef readStep(const Json& j, const std::string& path) {
   return s;
 }
 
+// {"x": COLUMN, "y": COLUMN or [COLUMN, ...], "file": "NAME.png", "title": T}
+PlotDef readPlot(const Json& j, const std::string& path) {
+  const Fields f(j, path, {"x", "y", "file", "title"});
+  PlotDef p{f.string("x"), {}, f.string("file"), f.string("title", "")};
+  if (f.at("y").is_string())
+    p.y.push_back(f.string("y"));
+  else
+    forEachItem(f.at("y"), f.path("y"), [&](const Json& y, const std::string& at) {
+      p.y.push_back(asString(y, at));
+    });
+  return p;
+}
+
 OutputDef readOutput(const Json& j, const std::string& path) {
   const Fields f(j, path,
-                 {"vtu", "vtu_format", "history", "final_state", "moment_point", "probes"});
+                 {"vtu", "vtu_format", "history", "final_state", "moment_point", "probes", "plots"});
   OutputDef o;
   o.vtu = f.boolean("vtu", o.vtu);
   o.vtuEncoding = f.choice("vtu_format",
@@ -160,6 +173,10 @@ OutputDef readOutput(const Json& j, const std::string& path) {
     forEachItem(f.at("probes"), f.path("probes"), [&](const Json& p, const std::string& at) {
       const Fields pf(p, at, {"name", "fibre", "node"});
       o.probes.push_back({pf.string("name"), pf.string("fibre"), pf.integer("node")});
+    });
+  if (f.has("plots"))
+    forEachItem(f.at("plots"), f.path("plots"), [&](const Json& p, const std::string& at) {
+      o.plots.push_back(readPlot(p, at));
     });
   return o;
 }

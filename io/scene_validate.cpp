@@ -442,8 +442,27 @@ void validateSolver(const SolverDef& s) {
   atLeast(s.krylov.refactorAbove, 1, "solver.refactor_above");
 }
 
+// Plots: the columns exist only once the World is built (io/plot_outputs.h checks them).
+void validatePlots(const OutputDef& o) {
+  std::set<std::string> files;
+  for (size_t i = 0; i < o.plots.size(); ++i) {
+    const PlotDef& pl = o.plots[i];
+    const std::string p = at("output.plots", i);
+    if (!o.history) fail(p, "needs the history (output.history is false)");
+    if (pl.x.empty()) fail(p + ".x", "must name a history column");
+    if (pl.y.empty()) fail(p + ".y", "must name at least one history column");
+    for (size_t k = 0; k < pl.y.size(); ++k)
+      if (pl.y[k].empty()) fail(at(p + ".y", k), "must name a history column");
+    const bool plain = pl.file.find('/') == std::string::npos && pl.file != ".png";
+    if (!plain || !pl.file.ends_with(".png"))
+      fail(p + ".file", "must be a file name ending in .png (no folder), got '" + pl.file + "'");
+    if (!files.insert(pl.file).second) fail(p + ".file", "'" + pl.file + "' repeated");
+  }
+}
+
 void validateOutput(const SceneDef& s, const Names& fibres) {
   finite(s.output.momentPoint, "output.moment_point");
+  validatePlots(s.output);
   uniqueNames(s.output.probes, "output.probes");
   for (size_t i = 0; i < s.output.probes.size(); ++i) {
     const ProbeDef& pr = s.output.probes[i];

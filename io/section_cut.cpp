@@ -1,0 +1,208 @@
+#include "io/section_cut.h"
+
+#include "io/plot.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace fibra {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A point of fibre `nodes` at s (node index + fraction), linear between nodes.
+template <class F>
+auto along(const std::vector<Index>& nodes, double s, F at) {
+  const size_t i = std::min(size_t(s), nodes.size() - 2);
+  const double t = s - double(i);
+  return ((1 - t) * at(nodes[i]) + t * at(nodes[i + 1])).eval();
+}
+
+// The rim point of angle phi at node n: x0 + R (cos phi g1 + sin phi g2), mm.
+Vec3 rimPoint(const FibreFrame& f, Index n, double phi) {
+  return f.x0[n] + f.radius[n] * (std::cos(phi) * f.g1[n] + std::sin(phi) * f.g2[n]);
+}
+
+// The s where the rim line of angle phi meets the plane, nearest to `sc`; NaN when it does not.
+double rimCrossing(const FibreFrame& f, const std::vector<Index>& nodes, const CutPlane& plane,
+                   double phi, double sc) {
+  const auto h = [&](Index n) { return rimPoint(f, n, phi)[plane.axis] - plane.value; };
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (size_t i = 0; i + 1 < nodes.size(); ++i) {
+    const double a = h(nodes[i]), b = h(nodes[i + 1]);
+    if ((a < 0) == (b < 0)) continue;
+    const double s = double(i) + a / (a - b);
+    if (!(std::abs(s - sc) >= std::abs(best - sc))) best = s;
+  }
+  return best;
+}
+
+SectionOutline cutAt(const FibreFrame& f, Index fibre, const CutPlane& plane, double sc,
+                     int sides) {
+  const std::vector<Index>& nodes = f.fibres[fibre];
+  SectionOutline out{fibre, sc, along(nodes, sc, [&](Index n) { return f.x0[n]; }), {}};
+  for (int k = 0; k < sides; ++k) {
+    const double phi = 2 * std::numbers::pi * k / sides;
+    const double s = rimCrossing(f, nodes, plane, phi, sc);
+    if (std::isnan(s)) continue;
+    Vec3 p = along(nodes, s, [&](Index n) { return rimPoint(f, n, phi); });
+    p[plane.axis] = plane.value;  // on the plane up to round-off: exactly on it
+    out.points.push_back(p);
+  }
+  return out;
+}
+
+const std::vector<double>& array(const VtuArrays& a, const std::string& key, size_t size) {
+  const auto it = a.find(key);
+  if (it == a.end()) throw std::runtime_error("VTU: no array " + key);
+  if (it->second.size() < size) throw std::runtime_error("VTU: array " + key + " too short");
+  return it->second;
+}
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+std::vector<SectionOutline> cutSections(const FibreFrame& f, const CutPlane& plane, int sides) {
+  if (sides < 3) throw std::invalid_argument("cutSections: sides must be >= 3");
+  std::vector<SectionOutline> out;
+  for (Index fibre = 0; fibre < Index(f.fibres.size()); ++fibre) {
+    const std::vector<Index>& nodes = f.fibres[fibre];
+    for (size_t i = 0; i + 1 < nodes.size(); ++i) {
+      const double a = f.x0[nodes[i]][plane.axis] - plane.value,
+                   b = f.x0[nodes[i + 1]][plane.axis] - plane.value;
+      if ((a < 0) == (b < 0)) continue;
+      SectionOutline s = cutAt(f, fibre, plane, double(i) + a / (a - b), sides);
+      if (s.points.size() >= 3) out.push_back(std::move(s));
+    }
+  }
+  return out;
+}
+
+CutPlane medianPlane(const FibreFrame& f, int axis) {
+  if (f.x0.empty()) throw std::invalid_argument("medianPlane: no nodes");
+  Vec3 lo = f.x0[0], hi = f.x0[0];
+  for (const Vec3& x : f.x0) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  if (axis < 0) (hi - lo).maxCoeff(&axis);
+  return {axis, 0.5 * (lo[axis] + hi[axis])};
+}
+
+std::array<int, 2> planeAxes(int axis) { return {(axis + 1) % 3, (axis + 2) % 3}; }
+
+FibreFrame fibreFrameFromVtu(const VtuArrays& a) {
+  const std::vector<double>& types = array(a, "Cells/types", 0);
+  const std::vector<double>& offsets = array(a, "Cells/offsets", types.size());
+  const std::vector<double>& connectivity =
+      array(a, "Cells/connectivity", types.empty() ? 0 : size_t(offsets[types.size() - 1]));
+  FibreFrame f;
+  Index nodes = 0;
+  for (size_t c = 0; c < types.size(); ++c) {
+    if (types[c] != 4) continue;  // VTK_POLY_LINE: a fibre's centreline
+    std::vector<Index>& fibre = f.fibres.emplace_back();
+    for (size_t k = c ? size_t(offsets[c - 1]) : 0; k < size_t(offsets[c]); ++k)
+      fibre.push_back(Index(connectivity[k]));
+    if (fibre.size() < 2) throw std::runtime_error("VTU: a fibre with fewer than 2 nodes");
+    for (Index n : fibre) {
+      if (n < 0) throw std::runtime_error("VTU: a negative point index");
+      nodes = std::max(nodes, n + 1);
+    }
+  }
+  const std::vector<double>& points = array(a, "Points/", 3 * size_t(nodes));
+  const std::vector<double>& g1 = array(a, "PointData/g1", 3 * size_t(nodes));
+  const std::vector<double>& g2 = array(a, "PointData/g2", 3 * size_t(nodes));
+  const std::vector<double>& radius = array(a, "PointData/radius", size_t(nodes));
+  for (Index n = 0; n < nodes; ++n) {
+    f.x0.emplace_back(points[3 * n], points[3 * n + 1], points[3 * n + 2]);
+    f.g1.emplace_back(g1[3 * n], g1[3 * n + 1], g1[3 * n + 2]);
+    f.g2.emplace_back(g2[3 * n], g2[3 * n + 1], g2[3 * n + 2]);
+    f.radius.push_back(radius[n]);
+  }
+  return f;
+}
+
+std::vector<PvdFrame> readRunFrames(const std::string& runDir) {
+  const fs::path pvd = fs::path(runDir) / "result.pvd";
+  if (!std::ifstream(pvd))
+    throw PlotInputError(pvd.string() + ": cannot read the frames (is " + runDir +
+                         " a fibra run's output directory, with output.vtu on?)");
+  try {
+    return readPvdFrames(readText(pvd));
+  } catch (const std::runtime_error& e) {
+    throw PlotInputError(pvd.string() + ": " + e.what());
+  }
+}
+
+FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
+  const fs::path pvd = fs::path(runDir) / "result.pvd";
+  const std::vector<PvdFrame> frames = readRunFrames(runDir);
+  const int last = int(frames.size()) - 1;
+  if (index < -1 || index > last)
+    throw PlotInputError(pvd.string() + ": --frame: " + std::to_string(index) +
+                         " outside 0.." + std::to_string(last) + " (or last)");
+  const int k = index < 0 ? last : index;
+  const fs::path vtu = fs::path(runDir) / frames[size_t(k)].file;
+  if (!std::ifstream(vtu))
+    throw PlotInputError(vtu.string() + ": cannot read frame " + std::to_string(k));
+  try {
+    FibreFrame f = fibreFrameFromVtu(readVtuArrays(readText(vtu)));
+    f.time = frames[size_t(k)].time;
+    f.file = vtu.string();
+    if (chosen) *chosen = k;
+    return f;
+  } catch (const std::runtime_error& e) {
+    throw PlotInputError(vtu.string() + ": " + e.what());
+  }
+}
+
+std::vector<Segment> cutPolygons(const VtuArrays& a, const CutPlane& plane) {
+  const std::vector<double>& offsets = array(a, "Cells/offsets", 0);
+  const std::vector<double>& connectivity =
+      array(a, "Cells/connectivity", offsets.empty() ? 0 : size_t(offsets.back()));
+  const std::vector<double>& points = array(a, "Points/", 0);
+  const auto point = [&](double i) {
+    if (i < 0 || 3 * size_t(i) + 2 >= points.size())
+      throw std::runtime_error("VTU: a point index out of range");
+    return Vec3(points[3 * size_t(i)], points[3 * size_t(i) + 1], points[3 * size_t(i) + 2]);
+  };
+  std::vector<Segment> out;
+  for (size_t c = 0, from = 0; c < offsets.size(); from = size_t(offsets[c++])) {
+    std::vector<Vec3> crossings;  // where the polygon's edges cross the plane
+    for (size_t k = from; k < size_t(offsets[c]); ++k) {
+      const Vec3 p = point(connectivity[k]);
+      const Vec3 q = point(connectivity[k + 1 < size_t(offsets[c]) ? k + 1 : from]);
+      const double hp = p[plane.axis] - plane.value, hq = q[plane.axis] - plane.value;
+      if ((hp < 0) != (hq < 0)) crossings.push_back(p + hp / (hp - hq) * (q - p));
+    }
+    if (crossings.size() == 2) out.push_back({crossings[0], crossings[1]});
+  }
+  return out;
+}
+
+std::vector<Segment> readToolCut(const std::string& frameFile, const CutPlane& plane) {
+  const std::string name = fs::path(frameFile).filename().string();  // result_0007.vtu
+  const size_t cut = name.rfind('_');
+  if (cut == std::string::npos) return {};
+  const fs::path tools = fs::path(frameFile).parent_path() /
+                         (name.substr(0, cut) + "_tools" + name.substr(cut));
+  if (!fs::exists(tools)) return {};
+  try {
+    return cutPolygons(readVtuArrays(readText(tools)), plane);
+  } catch (const std::runtime_error& e) {
+    throw PlotInputError(tools.string() + ": " + e.what());
+  }
+}
+
+}  // namespace fibra
