@@ -35,6 +35,10 @@ std::string lawLine(const ContactParams& c) {
                            initial.c_str(), c.penaltyChange, c.pRegRatio, c.gMax,
                            c.symmetrised ? "symmetrised" : "consistent");
   if (c.fibres) out += format(", element placement %s", c.weightedElements ? "weighted" : "paper");
+  if (c.mu > 0 || c.tools)  // friction is possible (tools carry their own mu)
+    out += c.frictionFlips > 0 ? format(", stick/slip held after %d changes (tolerance %g)",
+                                        c.frictionFlips, c.frictionTolerance)
+                               : std::string(", stick/slip never held");
   return out + "\n";
 }
 
