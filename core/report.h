@@ -58,8 +58,9 @@ struct ContactReport {
   // the contact set at acceptance, against a detection from the accepted state
   // (engine/contact_loops.h, systems/contact_queries.h)
   bool loopCapped = false;     // loop A stopped at its cap without meeting its exit test
-  double maxOverlap = 0;       // true overlap r_I + r_J - centre distance at the closest
-                               // sections (deformed radii r), max over the pairs found, mm
+  double maxOverlap = 0;       // true overlap w_I + w_J - centre distance at the closest
+                               // sections (w: half-widths along the line of centres,
+                               // systems/contact_queries.h), max over the pairs found, mm
   double maxOverlapRatio = 0;  // the same / the fibre-fibre p_max
   int redetectZoneChanges = 0; // zones that appear, vanish or change their element count
   double redetectGapChange = 0;     // max |g_N new - g_N used| / p_max over paired elements

@@ -52,24 +52,42 @@ void fillContactReport(const ContactParams& p, const ContactState& s, ContactRep
     add(s.toolForces, i, s.toolZones.pMax[s.toolElements.zone[i]]);
 }
 
+double halfWidth(const Section& S, double R, const Vec3& n) {
+  return R * std::hypot(S.g1.dot(n), S.g2.dot(n));
+}
+
+namespace {
+
+// An end face's point x against the other fibre S (radius R): its depth below that fibre's
+// surface, w - |P_t (x - x0)| (the centreline distance says nothing there: the face lies across it).
+double faceDepth(const Section& S, double R, const Vec3& x) {
+  const Vec3 t = S.dx0ds.normalized(), d = x - S.x0;
+  const Vec3 radial = d - d.dot(t) * t;
+  const double r = radial.norm();
+  return r > 0 ? halfWidth(S, R, radial / r) - r : halfWidth(S, R, S.g1.normalized());
+}
+
+}  // namespace
+
 double trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactElementStore& el) {
   double overlap = 0;
   for (Index e = 0; e < el.size(); ++e) {
-    const Section I = contactSection(fs, q, el.fibreI[e], el.sI[e]);
-    const Section J = contactSection(fs, q, el.fibreJ[e], el.sJ[e]);
+    const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
+    const Section I = contactSection(fs, q, fI, el.sI[e]);
+    const Section J = contactSection(fs, q, fJ, el.sJ[e]);
     const Vec3 oI = el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2, oJ = el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2;
-    // An end face's point against the other fibre's cylinder: its depth below that surface,
-    // r - |P_t (x - x0)| (the centreline distance says nothing there: the face lies across it).
-    const auto faceDepth = [](const Section& S, double r, const Vec3& x) {
-      const Vec3 t = S.dx0ds.normalized(), d = x - S.x0;
-      return r - (d - d.dot(t) * t).norm();
-    };
-    if (el.fallback[e] & kEndFaceI)
-      overlap = std::max(overlap, faceDepth(J, oJ.norm(), I.x0 + oI));
-    else if (el.fallback[e] & kEndFaceJ)
-      overlap = std::max(overlap, faceDepth(I, oI.norm(), J.x0 + oJ));
-    else
-      overlap = std::max(overlap, oI.norm() + oJ.norm() - (I.x0 - J.x0).norm());
+    const double RI = fs.radius[fI], RJ = fs.radius[fJ];
+    if (el.fallback[e] & kEndFaceI) {
+      overlap = std::max(overlap, faceDepth(J, RJ, I.x0 + oI));
+    } else if (el.fallback[e] & kEndFaceJ) {
+      overlap = std::max(overlap, faceDepth(I, RI, J.x0 + oJ));
+    } else {
+      const Vec3 d = I.x0 - J.x0;
+      const double dist = d.norm();
+      // coincident centres (a full overlap): the width across I's first director
+      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
+      overlap = std::max(overlap, halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist);
+    }
   }
   return overlap;
 }

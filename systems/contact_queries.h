@@ -13,11 +13,18 @@
 //                     normal update), as a multiple of their zone's p_max.
 // fillContactReport   counts (zones, elements, active, sliding) and the largest penetration.
 // trueOverlap         over the elements of a detection from the state q (closest sections, the
-//                     particles re-located on the deformed outlines): max of r_I + r_J - d, d =
-//                     |x0I - x0J| the distance of the section centres, r = |x - x0| the deformed
-//                     radius of each section towards the other (its particle's distance from its
-//                     centre); on an end-face element (kEndFaceI/J) the face point's depth
-//                     below the other fibre's surface, r - |P_t (x - x0)|; 0 when none
+//                     particles re-located on the deformed outlines): max of w_I + w_J - d, d =
+//                     |x0I - x0J| the distance of the section centres along n = (x0I - x0J) / d,
+//                     w = R |G^T n| the fibre's half-width along n (G = [g1 g2] the deformed
+//                     directors, R the radius in section coordinates): the largest of n . G xi
+//                     over the outline |xi| = R, which is also the width of the union of the
+//                     sections near it, since n is normal to the fibre there. (A section sheared
+//                     by gamma from the normal plane is a disc seen edge-on along its tilt: the
+//                     fibre is R cos gamma wide there; taking the outline point's distance R
+//                     instead over-stated the overlap by R (1 - cos gamma), 0.8 p_max at the
+//                     5-degree shear of a twisted rod in self-contact.) On an end-face element
+//                     (kEndFaceI/J) the face point's depth below the other fibre's surface,
+//                     w - |P_t (x - x0)| with w its half-width along P_t (x - x0); 0 when none
 //                     overlaps; mm. Independent of the elements a state was solved with: it
 //                     measures what they may under-report.
 // compareContactSets  a detection from the accepted state (`fresh`) against the set the state
@@ -32,6 +39,7 @@
 #include "components/contact_params.h"
 #include "components/contact_state.h"
 #include "core/report.h"
+#include "systems/interpolation.h"
 
 #include <Eigen/Core>
 
@@ -51,6 +59,11 @@ double deepestDetected(const ContactState& state);
 
 // Fills zones, elements, toolElements, active, sliding, maxPenetration, maxPenetrationRatio.
 void fillContactReport(const ContactParams& params, const ContactState& state, ContactReport& r);
+
+// Half-width of a fibre along a unit direction n normal to its centreline at section S: R |G^T n|,
+// the largest n . (xi1 g1 + xi2 g2) over the outline |xi| = R (R: the radius in section
+// coordinates, mm; G = [g1 g2]); mm.
+double halfWidth(const Section& S, double R, const Vec3& n);
 
 double trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
                    const ContactElementStore& detected);

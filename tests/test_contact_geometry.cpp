@@ -5,6 +5,7 @@
 #include "systems/contact_detection.h"
 #include "systems/contact_geometry.h"
 #include "systems/contact_normals.h"
+#include "systems/contact_queries.h"
 
 #include <doctest/doctest.h>
 
@@ -272,4 +273,24 @@ TEST_CASE("parameter defaults follow the radii and element lengths, given values
   def.thetaParallel = 0.1;
   def.skin = -1;
   CHECK_THROWS_AS(resolveContactParams(fs, def), SceneError);
+}
+
+TEST_CASE("a fibre's half-width along a direction normal to it: circle, sheared and stretched sections") {
+  // The true overlap measure (systems/contact_queries.h) uses R |G^T n|: the outline's extent
+  // along n, which is the width of the fibre there since n is normal to the centreline.
+  const double R = 0.1, gamma = 0.09;  // mm, rad (a 5-degree shear)
+  Section S;
+  S.x0 = Vec3::Zero();
+  S.dx0ds = Vec3::UnitX();
+  S.g1 = Vec3::UnitY();
+  S.g2 = Vec3::UnitZ();
+  CHECK(halfWidth(S, R, Vec3::UnitY()) == doctest::Approx(R));
+  CHECK(halfWidth(S, R, Vec3(0, 1, 1).normalized()) == doctest::Approx(R));
+  // Section plane tilted by gamma about z (shear): seen along y the disc is R cos(gamma) wide.
+  S.g1 = Vec3(std::sin(gamma), std::cos(gamma), 0);
+  CHECK(halfWidth(S, R, Vec3::UnitY()) == doctest::Approx(R * std::cos(gamma)));
+  CHECK(halfWidth(S, R, Vec3::UnitZ()) == doctest::Approx(R));
+  // A section stretched by 10% along z: 1.1 R wide along z.
+  S.g2 = 1.1 * Vec3::UnitZ();
+  CHECK(halfWidth(S, R, Vec3::UnitZ()) == doctest::Approx(1.1 * R));
 }
