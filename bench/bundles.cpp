@@ -9,6 +9,7 @@
 //
 //   build/bench_bundles [--rings 1,2,3,4] [--load squeeze,twist] [--mu 0.1,0.3]
 //                       [--pmax 5e-4,1e-4] [--elements N] [--threads N] [--line-search on|off]
+//                       [--normal-update newton|loop]
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -87,6 +88,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> loads{"squeeze", "twist"};
   int elements = 10;
   bool lineSearch = false;
+  NormalUpdate normalUpdate = ContactDef{}.normalUpdate;
   WorldDef def;
   def.threads = 2;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -97,9 +99,12 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--elements")) elements = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--threads")) def.threads = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--line-search")) lineSearch = !std::strcmp(argv[i + 1], "on");
+    if (!std::strcmp(argv[i], "--normal-update"))
+      normalUpdate = std::strcmp(argv[i + 1], "loop") ? NormalUpdate::Newton : NormalUpdate::Loop;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::printf("threads %d, line search %s\n\n", def.threads, lineSearch ? "on" : "off");
+  std::printf("threads %d, line search %s, normal update %s\n\n", def.threads,
+              lineSearch ? "on" : "off", normalUpdate == NormalUpdate::Loop ? "loop" : "newton");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
               "per increment, mean / max | cutbacks | wall s | %% asm / fac / sol / other |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
@@ -110,6 +115,7 @@ int main(int argc, char** argv) {
           SceneDef s = load == "twist" ? scenes::twistedBundle(int(r), elements, p, mu)
                                        : scenes::bundle(int(r), elements, 0.01, p, mu);
           for (StepDef& st : s.steps) st.lineSearch = lineSearch;
+          s.contact.normalUpdate = normalUpdate;
           printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
         }
 }

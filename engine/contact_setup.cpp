@@ -76,6 +76,7 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.gMax = std::isfinite(def.maxReversibleSlip) ? def.maxReversibleSlip : 0.005 * R;
   p.symmetrised = def.frictionTangent == FrictionTangent::Symmetrised;
   p.weightedElements = def.elementPlacement == ElementPlacement::Weighted;
+  p.newtonNormals = def.normalUpdate == NormalUpdate::Newton;
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h
   p.initialPenalty = def.initialPenalty;
   p.penaltyChange = def.penaltyChange;

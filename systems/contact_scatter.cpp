@@ -4,6 +4,63 @@
 
 namespace fibra {
 
+namespace {
+
+// A column block of V = dv/dq: the clique-local DOF where it starts (node, field), the block of
+// v it feeds (0 x^I, 1 x^J, 2 x0I, 3 x0J, 4 dx0/ds|I, 5 dx0/ds|J) and its weight (-, mm, 1/mm).
+struct VColumn {
+  Index local;
+  int block;
+  double weight;
+};
+
+int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, VColumn* out) {
+  int n = 0;
+  const int offset[2] = {0, side[0].nodes};
+  for (int s = 0; s < 2; ++s)
+    for (int a = 0; a < side[s].nodes; ++a)
+      for (int k = 0; k < 3; ++k) out[n++] = {kNodeDofs * (offset[s] + a) + 3 * k, s, side[s].c[a][k]};
+  const SectionWeights* sw[2] = {&jac.I, &jac.J};
+  for (int s = 0; s < 2; ++s)
+    for (int i = 0; i < sw[s]->count; ++i) {
+      const Index a = sw[s]->node[i] - side[s].firstNode;
+      if (a < 0 || a >= side[s].nodes) continue;  // outside the clique: left out
+      const Index col = kNodeDofs * (offset[s] + a);  // field x0
+      if (sw[s]->centre[i] != 0) out[n++] = {col, 2 + s, sw[s]->centre[i]};
+      if (sw[s]->tangent[i] != 0) out[n++] = {col, 4 + s, sw[s]->tangent[i]};
+    }
+  return n;
+}
+
+}  // namespace
+
+void scatterLinearisedContact(const ParticleWeights side[2], const NormalJacobian& jac,
+                              const Vec3& f, Index clique, bool withTangent, LinearSystem& ls) {
+  const double sign[2] = {1, -1};
+  scatterContact(side, sign, 2, f, Eigen::Matrix3d::Zero(), clique, false, ls);
+  if (!withTangent) return;
+  VColumn cols[2 * 9 + 2 * 10];
+  const int nc = vColumns(side, jac, cols);
+  const int offset[2] = {0, side[0].nodes};
+  const Index n = kNodeDofs * (side[0].nodes + side[1].nodes);
+  const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
+  double* values = ls.K.valuePtr();
+  for (int s = 0; s < 2; ++s)
+    for (int a = 0; a < side[s].nodes; ++a)
+      for (int k = 0; k < 3; ++k) {
+        const double rw = sign[s] * side[s].c[a][k];
+        if (rw == 0) continue;
+        const Index i0 = kNodeDofs * (offset[s] + a) + 3 * k;
+        for (int c = 0; c < nc; ++c) {
+          const double w = -rw * cols[c].weight;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              if (const Index p = pos[(i0 + i) * n + cols[c].local + j]; p >= 0)
+                values[p] += w * jac.dfdv(i, 3 * cols[c].block + j);
+        }
+      }
+}
+
 void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore& f,
                           const ContactCliqueStore& c, const IterationInput& input,
                           LinearSystem& ls) {
@@ -16,8 +73,12 @@ void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore
         const Index e = c.byClique[i];
         if (f.normalForce[e] == 0) continue;
         const ParticleWeights sides[2] = {el.sideI[e], el.sideJ[e]};
-        scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], c.firstClique + q,
-                       input.withTangent, ls);
+        if (!f.normalJacobian.empty() && f.normalJacobian[e].I.count > 0)
+          scatterLinearisedContact(sides, f.normalJacobian[e], f.force[e], c.firstClique + q,
+                                   input.withTangent, ls);
+        else
+          scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], c.firstClique + q,
+                         input.withTangent, ls);
       }
     });
   }

@@ -8,7 +8,8 @@
 // scatterToolContacts   reads ToolContactStore (particle weights), ContactForceStore,
 //   IterationInput; writes LinearSystem r, K, serially in element order (tool contacts are few);
 //   the clique of a tool element is its beam element's.
-// Both skip elements without normal force.
+// Both skip elements without normal force. A fibre element with a linearised normal goes
+// through scatterLinearisedContact.
 //
 // One element (scatterContact below):
 // A contact element acts on the relative position d = sum_s sign_s x_s of its particles
@@ -55,6 +56,14 @@ inline void scatterContact(const ParticleWeights* side, const double* sign, int 
                   if (const Index p = pos[(i0 + i) * n + j0 + j]; p >= 0) values[p] += w * S(i, j);
             }
 }
+
+// An element with a linearised normal (ContactForceStore::normalJacobian,
+// systems/normal_linearisation.h): r -= D^T f as above, and K += D^T (-df/dv) V with
+// V = dv/dq, v = (x^I, x^J, x0I, x0J, dx0/ds|I, dx0/ds|J): the particles' weights for x^I, x^J,
+// the sections' weights on the nodal x0 for the rest (a section node outside the two elements
+// of the clique is left out). Not thread-safe on its own, as scatterContact.
+void scatterLinearisedContact(const ParticleWeights side[2], const NormalJacobian& jacobian,
+                              const Vec3& f, Index clique, bool withTangent, LinearSystem& ls);
 
 void scatterFibreContacts(const ContactElementStore& elements, const ContactForceStore& forces,
                           const ContactCliqueStore& cliques, const IterationInput& input,
