@@ -26,10 +26,9 @@
 // dz/ds x0_a (the section weights; at an interior node the mean of two elements' derivatives,
 // systems/contact_geometry.h's contactSection), so the element adds (systems/contact_scatter.h)
 //   r -= D^T f,  K += D^T (-df/dv) V,  D = dd/dq, V = dv/dq.
-// Left out of K: a node of the section's weights outside the clique of the two particle elements
-// (only the other element's nodes of a node-averaged tangent) — the residual stays exact, the
-// convergence rate may suffer there. Forced normals (constant) and end faces keep the
-// fixed-normal law (linearisedNormal below).
+// A section at an interior node takes the mean of both elements' tangents: its clique is widened
+// by the other element (systems/contact_cliques.h), so nothing is left out of K. Forced normals
+// (constant) and end faces keep the fixed-normal law (linearisedNormal below).
 #pragma once
 
 #include "components/contact.h"
