@@ -75,7 +75,7 @@ struct ContactParams {
                                 // ZoneStore::friction; tools: ToolStore)
   double gMax = 0;              // reversible slip g_T,max, mm
   bool symmetrised = false;     // friction tangent without its non-symmetric part
-  bool newtonNormals = true;    // fibre-fibre normals follow the state inside Newton, linearised
+  bool newtonNormals = false;   // fibre-fibre normals follow the state inside Newton, linearised
                                 // (systems/normal_linearisation.h); false: fixed per pass, loop B
   bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,

@@ -199,7 +199,7 @@ struct ContactDef {
   int maxDetectionLoops = 3;          // n_A: contact elements fixed point
   int maxNormalLoops = 3;             // n_B: normals fixed point
   ElementPlacement elementPlacement = ElementPlacement::Weighted;
-  NormalUpdate normalUpdate = NormalUpdate::Newton;
+  NormalUpdate normalUpdate = NormalUpdate::Loop;
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

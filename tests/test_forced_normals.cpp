@@ -237,3 +237,4 @@ TEST_CASE("the forced-normal sample hashes the same with 1, 2 and 4 threads") {
     CHECK(h == reference);
   }
 }
+

@@ -148,7 +148,7 @@ TEST_CASE("a heavy parallel line contact converges with the linearised normal to
       {"type": "fix", "group": "U.end", "dofs": ["y"]},
       {"type": "clamp", "group": "D.all"}],
     "loads": [{"type": "line_force", "group": "U.all", "vector": [0, 0, -1.0]}],
-    "contact": {"max_penetration": 0.0005},
+    "contact": {"max_penetration": 0.0005, "normal_update": "newton"},
     "stabilisation": {"stiffness": 1e-05, "fibres": ["U"]},
     "steps": [{"end_time": 1, "increments": 5}]})";
   const double q = 1.0;  // N/mm
