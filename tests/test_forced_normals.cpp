@@ -237,5 +237,3 @@ TEST_CASE("the forced-normal sample hashes the same with 1, 2 and 4 threads") {
     CHECK(h == reference);
   }
 }
-
-
