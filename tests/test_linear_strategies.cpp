@@ -237,4 +237,3 @@ TEST_CASE("the linear solver's spans appear in the trace with their counts") {
   CHECK(krylov >= solve);  // one GMRES run per solve, two when a re-used factor failed
   CHECK(iterations >= krylov);
 }
-
