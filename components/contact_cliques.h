@@ -16,8 +16,8 @@ namespace fibra {
 struct ContactCliqueStore {
   // --- per contact clique, sorted by key ---
   std::vector<std::uint64_t> key;   // (eI * elements + eJ) * 9 + 3 wI + wJ: the pair of beam
-                                    // elements and each side's widening w (0 none, 1 the
-                                    // element before, 2 the element after: systems/contact_cliques.h)
+                                    // elements and each side's widening w (0 none, 1 the element
+                                    // before, 2 the one after; systems/contact_cliques.h)
   std::vector<std::array<Index, 4>> layout;  // first node and node count of side I, of side J
   std::vector<Index> cliqueFirst;   // first element in `byClique` (size cliques + 1)
   // --- per colour: cliques that share no node, scattered in parallel ---

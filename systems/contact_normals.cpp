@@ -54,7 +54,8 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
                                     params.thetaParallel, params.thetaCross, el.fallback[e]);
           // A linearised normal already is the state's: only fixed ones can ask for a pass.
           if (!linearisedNormal(params, el, e))
-            turned = std::max(turned, std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
+            turned = std::max(turned,
+                              std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
           el.normal[e] = ng.normal;
           el.gap[e] = ng.gap;
           el.theta[e] = ng.theta;

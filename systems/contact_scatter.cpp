@@ -19,7 +19,8 @@ int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, const Cli
   int n = 0;
   for (int s = 0; s < 2; ++s)
     for (int a = 0; a < side[s].nodes; ++a)
-      for (int k = 0; k < 3; ++k) out[n++] = {kNodeDofs * (at.first[s] + a) + 3 * k, s, side[s].c[a][k]};
+      for (int k = 0; k < 3; ++k)
+        out[n++] = {kNodeDofs * (at.first[s] + a) + 3 * k, s, side[s].c[a][k]};
   const SectionWeights* sw[2] = {&jac.I, &jac.J};
   const int rangeStart[2] = {0, at.first[1] - int(side[1].firstNode - sideFirstNode[1])};
   const int rangeEnd[2] = {rangeStart[1], at.nodes};
@@ -77,8 +78,9 @@ void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore
         const ParticleWeights sides[2] = {el.sideI[e], el.sideJ[e]};
         const std::array<Index, 4>& l = c.layout[q];  // the clique's node ranges
         const Index rangeFirst[2] = {l[0], l[2]};
-        const CliqueSlots slots{{int(sides[0].firstNode - l[0]), int(l[1] + sides[1].firstNode - l[2])},
-                                int(l[1] + l[3])};
+        const CliqueSlots slots{
+            {int(sides[0].firstNode - l[0]), int(l[1] + sides[1].firstNode - l[2])},
+            int(l[1] + l[3])};
         if (!f.normalJacobian.empty() && f.normalJacobian[e].I.count > 0)
           scatterLinearisedContact(sides, f.normalJacobian[e], f.force[e], c.firstClique + q,
                                    slots, rangeFirst, input.withTangent, ls);

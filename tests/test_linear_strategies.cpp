@@ -64,7 +64,8 @@ double solveWith(LinearStrategy s, const LinearSystem& ls, const Eigen::VectorXd
 TEST_CASE("every linear strategy solves a frictional and a frictionless contact tangent") {
   // Frictionless with fixed normals: symmetric; with linearised normals, or friction: not.
   using enum NormalUpdate;
-  for (const auto& [mu, update] : {std::pair(0.0, Loop), std::pair(0.0, Newton), std::pair(0.1, Newton)}) {
+  for (const auto& [mu, update] :
+       {std::pair(0.0, Loop), std::pair(0.0, Newton), std::pair(0.1, Newton)}) {
     auto w = squeezedBundle(mu, update);
     const LinearSystem& ls = w->system;
     CHECK(ls.symmetric == (update == Loop));

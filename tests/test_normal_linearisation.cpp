@@ -29,7 +29,8 @@ SceneDef pairAt(double angle, double mu, NormalUpdate update, int elements = 7) 
   SceneDef s;
   s.materials.push_back({"m", 4000, 0.3, 1, 1});
   const Vec3 t(std::cos(angle), std::sin(angle), 0), up(0, 0, 2 * R);
-  s.fibres.push_back(straightFibre("A", Vec3(-L / 2, 0, 0), Vec3(L / 2, 0, 0), R, elements, Vec3::UnitZ()));
+  const Vec3 a(L / 2, 0, 0);
+  s.fibres.push_back(straightFibre("A", -a, a, R, elements, Vec3::UnitZ()));
   s.fibres.push_back(straightFibre("B", up - L / 2 * t, up + L / 2 * t, R, elements, Vec3::UnitZ()));
   for (const char* f : {"A", "B"}) {
     hold(s, std::string(f) + ".start", {X, Y, Z});
