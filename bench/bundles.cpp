@@ -13,6 +13,7 @@
 //                       [--pmax 5e-4,1e-4] [--elements N] [--threads N] [--line-search on|off]
 //                       [--damping C]  (viscous continuation on every step, StepDef::damping)
 //                       [--hold-after N]  (contact.friction_hold_after; 0: statuses never held)
+//                       [--normal-update newton|loop]
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -97,6 +98,7 @@ int main(int argc, char** argv) {
   bool lineSearch = false;
   double damping = 0;
   int holdAfter = ContactDef{}.frictionHoldAfter;
+  NormalUpdate normalUpdate = ContactDef{}.normalUpdate;
   WorldDef def;
   def.threads = 2;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -109,10 +111,13 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--line-search")) lineSearch = !std::strcmp(argv[i + 1], "on");
     if (!std::strcmp(argv[i], "--damping")) damping = std::atof(argv[i + 1]);
     if (!std::strcmp(argv[i], "--hold-after")) holdAfter = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--normal-update"))
+      normalUpdate = std::strcmp(argv[i + 1], "loop") ? NormalUpdate::Newton : NormalUpdate::Loop;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::printf("threads %d, line search %s, damping %g, friction_hold_after %d\n\n", def.threads,
-              lineSearch ? "on" : "off", damping, holdAfter);
+  std::printf("threads %d, line search %s, damping %g, friction_hold_after %d, normal update %s\n\n",
+              def.threads, lineSearch ? "on" : "off", damping, holdAfter,
+              normalUpdate == NormalUpdate::Loop ? "loop" : "newton");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
               "per increment, mean / max | cutbacks | viscous force, max | held statuses, max | "
               "wall s | %% asm / fac / sol / other |\n");
@@ -125,6 +130,7 @@ int main(int argc, char** argv) {
                                        : scenes::bundle(int(r), elements, 0.01, p, mu);
           for (StepDef& st : s.steps) st.lineSearch = lineSearch, st.damping = damping;
           s.contact.frictionHoldAfter = holdAfter;
+          s.contact.normalUpdate = normalUpdate;
           printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
         }
 }

@@ -6,10 +6,28 @@
 #include "core/types.h"
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <vector>
 
 namespace fibra {
+
+// A contact element's section as weights on the nodal centres x0 of its fibre: x0(s) =
+// sum_i centre[i] x0_node[i], dx0/ds(s) = sum_i tangent[i] x0_node[i] (systems/geometry's
+// contactSection: at an interior node the tangent is the mean of two elements', 5 nodes at most).
+struct SectionWeights {
+  int count = 0;                     // 0: the element is not linearised in its normal
+  std::array<Index, 5> node{};       // global nodes
+  std::array<double, 5> centre{};    // -
+  std::array<double, 5> tangent{};   // 1/mm
+};
+
+// The derivative of an element's force on I with respect to everything its normal and gap read
+// (systems/normal_linearisation.h): v = (x^I, x^J, x0I, x0J, dx0/ds|I, dx0/ds|J).
+struct NormalJacobian {
+  Eigen::Matrix<double, 3, 18> dfdv = Eigen::Matrix<double, 3, 18>::Zero();  // N/mm, N
+  SectionWeights I, J;
+};
 
 struct ContactForceStore {
   // --- per contact element ---
@@ -19,6 +37,9 @@ struct ContactForceStore {
   std::vector<Eigen::Matrix3d> stiffness;  // S = -df/d(x^I - x^J), N/mm
   std::vector<Vec3> gRev;           // reversible slip, mm
   std::vector<std::uint8_t> slip;   // 1 when the trial slip left the disc of radius g_T,max
+  // with the normal linearised (contact.normal_update "newton", fibre-fibre elements; else
+  // empty): df/dv and the sections' weights; an element with I.count == 0 uses `stiffness`
+  std::vector<NormalJacobian> normalJacobian;
 
   Index size() const { return Index(gap.size()); }
 };

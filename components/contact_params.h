@@ -79,6 +79,8 @@ struct ContactParams {
                                 // stick/slip status is held for the pass (0: never held)
   double frictionTolerance = 0.01;  // a held status is consistent within this relative distance
                                     // of the slip circle |t| = g_T,max (systems/friction_status.h)
+  bool newtonNormals = false;   // fibre-fibre normals follow the state inside Newton, linearised
+                                // (systems/normal_linearisation.h); false: fixed per pass, loop B
   bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
                                 // systems/tool_detection.h)

@@ -82,7 +82,9 @@ Index settleFriction(WorldState& w, ContactReport& report) {
 }
 
 // Loop B: Newton with the elements fixed, then the normals at the new state, until they stop
-// turning or n_B passes.
+// turning or n_B passes. Linearised fibre normals (contact `normal_update` "newton") already are
+// those of the converged state: their update only records them (for the reports and the step
+// limit), and only fixed normals (end faces, tools) can ask for another pass.
 NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settings,
                         const NewtonCallbacks& callbacks, StepTimings& timings,
                         ContactReport& report, NewtonResult nr) {

@@ -77,7 +77,8 @@ void buildDetect(WorldState& w, TaskGraph& g) {
     g.add("contact elements", generateContactElements, w.fibres, w.fibres.q, w.contact,
           c.centrelines, s.zones, s.elements, trace, w.cancel);
     g.add("contact particles", bindContactParticles, w.fibres, s.elements);
-    g.add("contact cliques", bindContactCliques, w.fibres, s.elements, w.cliques, w.system);
+    g.add("contact cliques", bindContactCliques, w.fibres, w.contact, s.elements, w.cliques,
+          w.system);
   }
   if (w.contact.tools)
     g.add("tool detection", detectToolContacts, w.fibres, w.tools, w.contact, w.input,

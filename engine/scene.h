@@ -166,6 +166,9 @@ enum class FrictionTangent { Consistent, Symmetrised };
 // Where a line contact's elements sit (docs/CONTACT.md 1.4): Gauss points between both fibres'
 // element ends, weighted (uniform line force), or equally spaced with equal penalties (eq. 7).
 enum class ElementPlacement { Weighted, Paper };
+// How fibre-fibre normals follow the state: recomputed at every Newton assembly with their
+// derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop).
+enum class NormalUpdate { Newton, Loop };
 
 // Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
 // value): friction, p_max and the penalty bounds. A rule names two contact classes (the same
@@ -210,6 +213,7 @@ struct ContactDef {
                                       // its status is held for the pass (0: never; <= 255)
   double frictionHoldTolerance = 0.01;  // a held status is consistent within this relative
                                         // distance of the slip circle (friction force error)
+  NormalUpdate normalUpdate = NormalUpdate::Loop;
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

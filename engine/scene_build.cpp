@@ -227,7 +227,10 @@ void buildWorld(WorldState& w) {
 
   buildContact(w);
   buildStabilisation(w);
-  w.system.symmetric = !hasFriction(w) || w.contact.symmetrised;
+  // A linearised normal makes the fibre-fibre tangent non-symmetric (and, on an unstable
+  // equilibrium, indefinite): sparse LU (systems/linear_solver.h).
+  const bool newtonNormals = w.contact.fibres && w.contact.newtonNormals;
+  w.system.symmetric = !newtonNormals && (!hasFriction(w) || w.contact.symmetrised);
 
   numberEquations(w.fibres, w.constraints, w.system);
   w.arena->execute([&] { buildPattern(w.fibres, beamCliques(w.fibres), w.system); });

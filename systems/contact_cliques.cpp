@@ -1,5 +1,6 @@
 #include "systems/contact_cliques.h"
 
+#include "systems/contact_geometry.h"
 #include "systems/sparse_pattern.h"
 
 #include <tbb/parallel_for.h>
@@ -10,33 +11,57 @@
 namespace fibra {
 namespace {
 
-std::uint64_t keyOf(const ContactElementStore& el, Index e, Index elements) {
-  return std::uint64_t(el.sideI[e].element) * std::uint64_t(elements) +
-         std::uint64_t(el.sideJ[e].element);
+// The widening of one side (0 none, 1 the element before the particle's, 2 the one after): the
+// other element of a node-averaged section tangent, with linearised normals only.
+std::uint64_t widening(const FibreStore& fs, const ContactParams& p, Index f, double s,
+                       Index element) {
+  if (!p.newtonNormals) return 0;
+  const Index node = interiorNodeAt(fs, f, s);
+  if (node < 0) return 0;
+  const Index after = fs.firstElement[f] + node;  // the element starting at the node
+  return element == after ? 1 : element == after - 1 ? 2 : 0;
+}
+
+std::uint64_t keyOf(const FibreStore& fs, const ContactParams& p, const ContactElementStore& el,
+                    Index e, Index elements) {
+  const std::uint64_t pair = std::uint64_t(el.sideI[e].element) * std::uint64_t(elements) +
+                             std::uint64_t(el.sideJ[e].element);
+  return pair * 9 + 3 * widening(fs, p, el.fibreI[e], el.sI[e], el.sideI[e].element) +
+         widening(fs, p, el.fibreJ[e], el.sJ[e], el.sideJ[e].element);
+}
+
+// The nodes of a clique: first node and count of side I, of side J.
+std::array<Index, 4> layoutOf(const FibreStore& fs, std::uint64_t key) {
+  const Index nE = fs.elements();
+  const std::uint64_t pair = key / 9;
+  const Index e[2] = {Index(pair / nE), Index(pair % nE)};
+  const int w[2] = {int(key % 9 / 3), int(key % 3)};
+  std::array<Index, 4> out;
+  for (int s = 0; s < 2; ++s) {
+    const int order = fs.order[fs.elementFibre[e[s]]];
+    out[2 * s] = fs.elementFirstNode[e[s]] - (w[s] == 1 ? order : 0);
+    out[2 * s + 1] = order + 1 + (w[s] ? order : 0);
+  }
+  return out;
 }
 
 // The pattern: beam cliques, then the contact cliques in key order.
 void rebuildPattern(const FibreStore& fs, const ContactCliqueStore& c, LinearSystem& ls) {
   CliqueList cliques = beamCliques(fs);
-  const Index nE = fs.elements();
-  for (const std::uint64_t k : c.key) {
-    const Index eI = Index(k / nE), eJ = Index(k % nE);
-    cliques.addPair(fs.elementFirstNode[eI], fs.order[fs.elementFibre[eI]] + 1,
-                    fs.elementFirstNode[eJ], fs.order[fs.elementFibre[eJ]] + 1);
-  }
+  for (const std::array<Index, 4>& l : c.layout) cliques.addPair(l[0], int(l[1]), l[2], int(l[3]));
   buildPattern(fs, cliques, ls);
 }
 
 // Greedy colouring of every clique in key order; colours listed with ascending cliques.
 void colour(const FibreStore& fs, ContactCliqueStore& c) {
-  const Index nE = fs.elements(), n = c.size();
+  const Index n = c.size();
   std::vector<std::vector<Index>> nodeColours(fs.nodes());
   std::vector<Index> forbiddenBy, colourOf(n);
   for (Index q = 0; q < n; ++q) {
-    Index nodes[6];
+    Index nodes[10];
     int count = 0;
-    for (const Index e : {Index(c.key[q] / nE), Index(c.key[q] % nE)})
-      for (int a = 0; a <= fs.order[fs.elementFibre[e]]; ++a) nodes[count++] = fs.elementFirstNode[e] + a;
+    for (int s = 0; s < 2; ++s)
+      for (Index a = 0; a < c.layout[q][2 * s + 1]; ++a) nodes[count++] = c.layout[q][2 * s] + a;
     for (int i = 0; i < count; ++i)
       for (const Index col : nodeColours[nodes[i]]) forbiddenBy[col] = q;
     Index col = 0;
@@ -56,15 +81,15 @@ void colour(const FibreStore& fs, ContactCliqueStore& c) {
 
 }  // namespace
 
-void bindContactCliques(const FibreStore& fs, const ContactElementStore& el,
-                        ContactCliqueStore& c, LinearSystem& ls) {
+void bindContactCliques(const FibreStore& fs, const ContactParams& p,
+                        const ContactElementStore& el, ContactCliqueStore& c, LinearSystem& ls) {
   const Index nE = fs.elements(), n = el.size();
   if (c.elements != nE) {
     c.key.clear();
     c.elements = nE;
   }
   std::vector<std::uint64_t> keys(n);
-  tbb::parallel_for(Index(0), n, [&](Index e) { keys[e] = keyOf(el, e, nE); });
+  tbb::parallel_for(Index(0), n, [&](Index e) { keys[e] = keyOf(fs, p, el, e, nE); });
   std::vector<std::uint64_t> present = keys;
   std::sort(present.begin(), present.end());
   present.erase(std::unique(present.begin(), present.end()), present.end());
@@ -80,6 +105,8 @@ void bindContactCliques(const FibreStore& fs, const ContactElementStore& el,
   if (prune) c.key = present;
   if (grows || prune || c.colourFirst.empty()) {
     c.firstClique = nE;
+    c.layout.resize(c.key.size());
+    for (size_t q = 0; q < c.key.size(); ++q) c.layout[q] = layoutOf(fs, c.key[q]);
     rebuildPattern(fs, c, ls);
     colour(fs, c);
     ++c.rebuilds;

@@ -101,7 +101,11 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
 }
 
 // Sizes a force store for n elements (values are overwritten by the law systems).
-inline void resizeContactForces(ContactForceStore& f, Index n) { resizeColumns(f, n); }
+// The normal's Jacobians stay empty: the fibre law sizes them when it linearises the normal.
+inline void resizeContactForces(ContactForceStore& f, Index n) {
+  resizeColumns(f, n);
+  f.normalJacobian.clear();
+}
 
 // Element e's entries of a force store.
 inline void storeContactLaw(const ContactLawResult& r, Index e, ContactForceStore& f) {

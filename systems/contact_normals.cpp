@@ -2,6 +2,7 @@
 
 #include "systems/contact_geometry.h"
 #include "systems/friction_history.h"
+#include "systems/normal_linearisation.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -17,53 +18,11 @@ namespace fibra {
 NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
                        double thetaCross, std::uint8_t flags) {
-  const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
   const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
   const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
-  if (flags & (kEndFaceI | kEndFaceJ)) {
-    // An end face against the other fibre's side: N normal to that fibre's axis, through the
-    // face particle (from J to I).
-    const bool onI = flags & kEndFaceI;
-    const Vec3 t = onI ? tJ : tI;
-    const Vec3 r = onI ? Vec3(xI - J.x0) : Vec3(I.x0 - xJ);
-    Vec3 n = r - r.dot(t) * t;
-    const double theta = std::atan2(tI.cross(tJ).norm(), std::abs(tI.dot(tJ)));
-    if (n.norm() > 1e-12 * (RI + RJ)) {
-      n.normalize();
-      return {n, (xI - xJ).dot(n), theta, 0, false};
-    }
-  }
-  // Centre-to-centre vector without its component along the mean tangent: the sections of a
-  // pair drift apart along parallel fibres as they slide, and that axial offset must not tilt
-  // the normal (a tilted normal turns normal force into axial force, docs/CONTACT.md).
-  // Sections on one axis (fibres meeting end to end) keep the axial direction.
-  const Vec3 t = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
-  const Vec3 centres = I.x0 - J.x0;
-  Vec3 d = centres - centres.dot(t) * t;
-  if (d.norm() <= 1e-9 * (RI + RJ)) d = centres;
-  Vec3 cross = tI.cross(tJ);
-  const double theta = std::atan2(cross.norm(), std::abs(tI.dot(tJ)));
-  double w = theta > thetaCross ? 1 : 0;
-  if (thetaCross > thetaParallel)
-    w = std::clamp((theta - thetaParallel) / (thetaCross - thetaParallel), 0.0, 1.0);
-  if (w > 0) {
-    cross.normalize();
-    if (cross.dot(d) < 0) cross = -cross;
-  }
-  NormalGap out{Vec3::Zero(), 0, theta, w, false};
-  const bool centresApart = d.norm() > 1e-9 * (RI + RJ);
-  if (w == 1 || (w > 0 && !centresApart)) {
-    out.normal = cross;
-    out.crossWeight = 1;
-  } else if (centresApart) {
-    out.normal = (w * cross + (1 - w) * d.normalized()).normalized();
-  } else {
-    const Vec3 p = xJ - xI;
-    out.normal = p.norm() > 0 ? Vec3(p.normalized()) : Vec3(I.g1.normalized());
-    out.fallback = true;
-  }
-  out.gap = (xI - xJ).dot(out.normal);
-  return out;
+  const NormalOf<double> n = normalOfSections<double>(I.x0, J.x0, I.dx0ds, J.dx0ds, xI, xJ, I.g1,
+                                                      RI, RJ, thetaParallel, thetaCross, flags);
+  return {n.normal, (xI - xJ).dot(n.normal), n.theta, n.crossWeight, n.fallback};
 }
 
 NormalGap forcedNormalAndGap(const Section& I, const Section& J, const double xiI[2],
@@ -93,7 +52,10 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
               forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * params.forcedNormal)
                      : normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
                                     params.thetaParallel, params.thetaCross, el.fallback[e]);
-          turned = std::max(turned, std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
+          // A linearised normal already is the state's: only fixed ones can ask for a pass.
+          if (!linearisedNormal(params, el, e))
+            turned = std::max(turned,
+                              std::acos(std::clamp(el.normal[e].dot(ng.normal), -1.0, 1.0)));
           el.normal[e] = ng.normal;
           el.gap[e] = ng.gap;
           el.theta[e] = ng.theta;

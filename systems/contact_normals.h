@@ -5,7 +5,9 @@
 // Reads  FibreStore, the state q, ContactParams (theta_cross, theta_parallel), the particles of
 //        ContactElementStore.
 // Writes ContactElementStore::normal, gap, theta, crossWeight, the kFallbackNormal bit and (the
-//        update on its own) gRev0 and ContactLoopStats::normalTurn.
+//        update on its own) gRev0 and ContactLoopStats::normalTurn (over the elements whose
+//        normal is fixed in a Newton pass: with normal_update "newton" the others already are
+//        those of the state, systems/normal_linearisation.h).
 // Threading: parallel over contact elements, each writing its own entries.
 //
 // With the sections of the two particles (centres x0, unit tangents t) and
@@ -43,6 +45,11 @@
 #include "systems/contact_params.h"
 #include "systems/interpolation.h"
 
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <type_traits>
+
 namespace fibra {
 
 struct NormalGap {
@@ -50,6 +57,81 @@ struct NormalGap {
   double gap, theta, crossWeight;
   bool fallback;
 };
+
+template <class T>
+using Vec3Of = Eigen::Matrix<T, 3, 1>;
+
+// The value of a scalar or of a forward-mode derivative scalar (systems/normal_linearisation.h).
+template <class T>
+double valueOf(const T& x) {
+  if constexpr (std::is_arithmetic_v<T>) return x;
+  else return x.value();
+}
+
+template <class T>
+struct NormalOf {
+  Vec3Of<T> normal;
+  double theta, crossWeight;
+  bool fallback;
+};
+
+// Eqs. 10-11 (the rules above) on the section centres cI, cJ (mm), the centreline derivatives
+// aI, aJ (dx0/ds, unit-free, not normalised) and the particles xI, xJ (mm); g1I: I's g1, the
+// last resort of a fallback. Templated on the scalar so that systems/normal_linearisation.h
+// differentiates this very code (T = double for the values, a forward-mode derivative scalar for
+// dN/d(xI, xJ, cI, cJ, aI, aJ)): every branch is taken on the values, as for doubles.
+template <class T>
+NormalOf<T> normalOfSections(const Vec3Of<T>& cI, const Vec3Of<T>& cJ, const Vec3Of<T>& aI,
+                             const Vec3Of<T>& aJ, const Vec3Of<T>& xI, const Vec3Of<T>& xJ,
+                             const Vec3& g1I, double RI, double RJ, double thetaParallel,
+                             double thetaCross, std::uint8_t flags) {
+  using std::abs;
+  using std::atan2;
+  using V = Vec3Of<T>;
+  const V tI = aI.normalized(), tJ = aJ.normalized();
+  V cross = tI.cross(tJ);
+  const T theta = atan2(cross.norm(), abs(tI.dot(tJ)));
+  if (flags & (kEndFaceI | kEndFaceJ)) {
+    // An end face against the other fibre's side: N normal to that fibre's axis, through the
+    // face particle (from J to I).
+    const bool onI = flags & kEndFaceI;
+    const V t = onI ? tJ : tI;
+    const V r = onI ? V(xI - cJ) : V(cI - xJ);
+    const V n = r - r.dot(t) * t;
+    if (n.norm() > 1e-12 * (RI + RJ)) return {n.normalized(), valueOf(theta), 0, false};
+  }
+  // Centre-to-centre vector without its component along the mean tangent: the sections of a
+  // pair drift apart along parallel fibres as they slide, and that axial offset must not tilt
+  // the normal (a tilted normal turns normal force into axial force, docs/CONTACT.md).
+  // Sections on one axis (fibres meeting end to end) keep the axial direction.
+  const V t = (tI + (tI.dot(tJ) < 0 ? V(-tJ) : tJ)).normalized();
+  const V centres = cI - cJ;
+  V d = centres - centres.dot(t) * t;
+  if (d.norm() <= 1e-9 * (RI + RJ)) d = centres;
+  T w = T(theta > thetaCross ? 1.0 : 0.0);
+  if (thetaCross > thetaParallel) {
+    w = (theta - thetaParallel) / (thetaCross - thetaParallel);
+    if (w < 0) w = T(0.0);
+    if (w > 1) w = T(1.0);
+  }
+  if (w > 0) {
+    cross.normalize();
+    if (cross.dot(d) < 0) cross = -cross;
+  }
+  NormalOf<T> out{V::Zero(), valueOf(theta), valueOf(w), false};
+  const bool centresApart = d.norm() > 1e-9 * (RI + RJ);
+  if (w == 1 || (w > 0 && !centresApart)) {
+    out.normal = cross;
+    out.crossWeight = 1;
+  } else if (centresApart) {
+    out.normal = (w * cross + (1 - w) * d.normalized()).normalized();
+  } else {
+    const V p = xJ - xI;
+    out.normal = p.norm() > 0 ? V(p.normalized()) : V(g1I.normalized().template cast<T>());
+    out.fallback = true;
+  }
+  return out;
+}
 
 // Eqs. 10-11 for one pair of sections and particles (radii RI, RJ, mm). With kEndFaceI in
 // `flags` (ContactFallback) I's particle lies on I's flat end face and N is normal to J's axis

@@ -8,7 +8,8 @@
 // scatterToolContacts   reads ToolContactStore (particle weights), ContactForceStore,
 //   IterationInput; writes LinearSystem r, K, serially in element order (tool contacts are few);
 //   the clique of a tool element is its beam element's.
-// Both skip elements without normal force.
+// Both skip elements without normal force. A fibre element with a linearised normal goes
+// through scatterLinearisedContact.
 //
 // One element (scatterContact below):
 // A contact element acts on the relative position d = sum_s sign_s x_s of its particles
@@ -29,22 +30,35 @@
 
 namespace fibra {
 
+// Where the sides' element nodes sit in their clique: side s's first node is the clique's
+// node first[s] of `nodes` (a widened contact clique holds a neighbouring element too,
+// systems/contact_cliques.h); by default the sides' elements in order.
+struct CliqueSlots {
+  int first[2];
+  int nodes;
+};
+
+inline CliqueSlots defaultSlots(const ParticleWeights* side, int sides) {
+  CliqueSlots c{{0, side[0].nodes}, side[0].nodes};
+  if (sides == 2) c.nodes += side[1].nodes;
+  return c;
+}
+
 inline void scatterContact(const ParticleWeights* side, const double* sign, int sides,
                            const Vec3& f, const Eigen::Matrix3d& S, Index clique,
-                           bool withTangent, LinearSystem& ls) {
-  int total = 0;
-  for (int s = 0; s < sides; ++s) total += side[s].nodes;
+                           bool withTangent, LinearSystem& ls, const CliqueSlots* slots = nullptr) {
+  const CliqueSlots at = slots ? *slots : defaultSlots(side, sides);
   for (int s = 0; s < sides; ++s)
     for (int a = 0; a < side[s].nodes; ++a)
       for (int k = 0; k < 3; ++k)
         ls.r.segment<3>(kNodeDofs * (side[s].firstNode + a) + 3 * k) -= sign[s] * side[s].c[a][k] * f;
   if (!withTangent) return;
-  const Index n = kNodeDofs * total;
+  const Index n = kNodeDofs * at.nodes;
   const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
   double* values = ls.K.valuePtr();
-  for (int s = 0, na = 0; s < sides; na += side[s].nodes, ++s)
-    for (int t = 0, nb = 0; t < sides; nb += side[t].nodes, ++t)
-      for (int a = 0; a < side[s].nodes; ++a)
+  for (int s = 0; s < sides; ++s)
+    for (int t = 0; t < sides; ++t)
+      for (int a = 0, na = at.first[s], nb = at.first[t]; a < side[s].nodes; ++a)
         for (int b = 0; b < side[t].nodes; ++b)
           for (int k = 0; k < 3; ++k)
             for (int h = 0; h < 3; ++h) {
@@ -55,6 +69,15 @@ inline void scatterContact(const ParticleWeights* side, const double* sign, int 
                   if (const Index p = pos[(i0 + i) * n + j0 + j]; p >= 0) values[p] += w * S(i, j);
             }
 }
+
+// An element with a linearised normal (ContactForceStore::normalJacobian,
+// systems/normal_linearisation.h): r -= D^T f as above, and K += D^T (-df/dv) V with
+// V = dv/dq, v = (x^I, x^J, x0I, x0J, dx0/ds|I, dx0/ds|J): the particles' weights for x^I, x^J,
+// the sections' weights on the nodal x0 for the rest; sideFirstNode[s]: the global node at the
+// start of side s's range in the (possibly widened) clique. Not thread-safe on its own.
+void scatterLinearisedContact(const ParticleWeights side[2], const NormalJacobian& jacobian,
+                              const Vec3& f, Index clique, const CliqueSlots& slots,
+                              const Index sideFirstNode[2], bool withTangent, LinearSystem& ls);
 
 void scatterFibreContacts(const ContactElementStore& elements, const ContactForceStore& forces,
                           const ContactCliqueStore& cliques, const IterationInput& input,

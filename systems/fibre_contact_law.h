@@ -11,6 +11,10 @@
 // Per element: d = x^I - x^J from the particle weights, the law of systems/contact_law.h with the
 // penalty k_zone w_e (w_e: the element's share of the line, mean 1 over the zone,
 // systems/contact_elements.h), p_reg = (p_reg / p_max) p_max,zone and mu = mu_zone.
+// With ContactParams::newtonNormals (contact `normal_update` "newton"), every element whose
+// normal is neither forced nor an end face's recomputes N from the state and is linearised in it
+// (systems/normal_linearisation.h: ContactForceStore::normalJacobian); the others keep the
+// fixed-normal law (their NormalJacobian has I.count == 0).
 // Threading: parallel over elements, each writing its own entries. Runs beside the beam
 // evaluation and the tool contact law: it writes nothing they read.
 #pragma once

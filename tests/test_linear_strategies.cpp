@@ -23,9 +23,10 @@ constexpr LinearStrategy kStrategies[] = {LinearStrategy::Direct, LinearStrategy
 
 // A 7-fibre bundle after its first converged squeeze increment, with the tangent Newton last
 // assembled (at the converged state).
-std::unique_ptr<WorldState> squeezedBundle(double mu) {
+std::unique_ptr<WorldState> squeezedBundle(double mu, NormalUpdate update = NormalUpdate::Newton) {
   auto w = std::make_unique<WorldState>();
   w->scene = scenes::bundle(1, 10, 0.01, 5e-4, mu);
+  w->scene.contact.normalUpdate = update;
   w->def.threads = 1;
   buildWorld(*w);
   REQUIRE(advance(*w).status == StepStatus::Converged);
@@ -61,10 +62,13 @@ double solveWith(LinearStrategy s, const LinearSystem& ls, const Eigen::VectorXd
 }  // namespace
 
 TEST_CASE("every linear strategy solves a frictional and a frictionless contact tangent") {
-  for (double mu : {0.0, 0.1}) {
-    auto w = squeezedBundle(mu);
+  // Frictionless with fixed normals: symmetric; with linearised normals, or friction: not.
+  using enum NormalUpdate;
+  for (const auto& [mu, update] :
+       {std::pair(0.0, Loop), std::pair(0.0, Newton), std::pair(0.1, Newton)}) {
+    auto w = squeezedBundle(mu, update);
     const LinearSystem& ls = w->system;
-    CHECK(ls.symmetric == (mu == 0));
+    CHECK(ls.symmetric == (update == Loop));
     const Eigen::VectorXd b = randomVector(ls.freeCount, 7);
     for (LinearStrategy s : kStrategies) {
       CAPTURE(mu);
@@ -118,8 +122,9 @@ TEST_CASE("the Krylov strategy re-uses its factor, refactorises when asked, and 
 
 TEST_CASE("the Krylov strategy shifts an indefinite symmetric part and solves the true K") {
   // The frictionless bundle's tangent is not positive definite (the direct strategy falls back
-  // to LDL^T): Krylov factorises its symmetric part shifted and still solves K itself.
-  auto w = squeezedBundle(0);
+  // to LDL^T): Krylov factorises its symmetric part shifted and still solves K itself. (Fixed
+  // normals: the tangent is symmetric.)
+  auto w = squeezedBundle(0, NormalUpdate::Loop);
   const LinearSystem& ls = w->system;
   const Eigen::VectorXd b = randomVector(ls.freeCount, 5);
   LinearSolver direct;
@@ -133,14 +138,21 @@ TEST_CASE("the Krylov strategy shifts an indefinite symmetric part and solves th
 }
 
 TEST_CASE("a squeezed 7-fibre bundle reaches the same state with every linear strategy") {
-  // The first 4 of its 10 increments (0.004 mm of squeeze), to keep the test short.
+  // The first 4 of its 10 increments (0.004 mm of squeeze), to keep the test short. Fixed
+  // normals (contact normal_update "loop"): with linearised normals the tangent is indefinite
+  // (fibres lying on fibres have a negative lateral stiffness) and the strategies' round-off
+  // sends Newton along different paths (UMFPACK stagnates at the 4th frictional increment where
+  // sparse LU converges; docs/RESULTS.md).
   for (double mu : {0.0, 0.1}) {
     std::vector<Eigen::VectorXd> finals;
     std::vector<double> forces;
     for (LinearStrategy s : kStrategies) {
       CAPTURE(mu);
-      CAPTURE(strategyName(s));
-      World w(scenes::bundle(1, 10, 0.01, 5e-4, mu), {.threads = 1, .linearStrategy = s});
+      const std::string name = strategyName(s);
+      CAPTURE(name);
+      SceneDef scene = scenes::bundle(1, 10, 0.01, 5e-4, mu);
+      scene.contact.normalUpdate = NormalUpdate::Loop;
+      World w(scene, {.threads = 1, .linearStrategy = s});
       for (int k = 0; k < 4; ++k) REQUIRE(w.step().status == StepStatus::Converged);
       finals.push_back(w.fibres().q);
       forces.push_back(w.toolReaction(1).z());
