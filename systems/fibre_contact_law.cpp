@@ -17,7 +17,7 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
     const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
     const Index z = el.zone[e];
     const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
-                               zones.friction[z], p.gMax};
+                               zones.friction[z] * p.frictionFactor, p.gMax};
     const ContactLawResult r =
         contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised, status.held[e]);
     storeContactLaw(r, e, out);
