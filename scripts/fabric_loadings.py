@@ -168,8 +168,21 @@ def main():
     sh = start_shifts(a.state)
     for name, scene in (("fabric_biaxial", biaxial(sh)), ("fabric_shear", shear(sh))):
         with open(f"{a.out}/{name}.json", "w") as f:
-            json.dump(scene, f, indent=1)
-            f.write("\n")
+            f.write(dump(scene))
+
+
+def dump(scene):
+    """The scene as JSON with a header comment, one line per list item."""
+    one = lambda v: json.dumps(v, separators=(", ", ": "))
+    parts = []
+    for k, v in scene.items():
+        if isinstance(v, list) and v:
+            parts.append(f'  "{k}": [\n    ' + ",\n    ".join(one(x) for x in v) + "\n  ]")
+        else:
+            parts.append(f'  "{k}": {one(v)}')
+    head = ("// Written by scripts/fabric_loadings.py (docs/SCENE.md \"Fabric test loadings\"): the\n"
+            "// per-fibre start positions come from a force-controlled settle run.\n")
+    return head + "{\n" + ",\n".join(parts) + "\n}\n"
 
 
 if __name__ == "__main__":
