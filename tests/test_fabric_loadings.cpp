@@ -98,34 +98,30 @@ TEST_CASE("fabric loadings: reduced biaxial tension converges with a rising edge
                                  << weft[n] << " N (weft) at the end");
 }
 
-TEST_CASE("fabric loadings: one frictionless shear cycle gives a force changing sign") {
+TEST_CASE("fabric loadings: one shear cycle with friction gives a loop that dissipates energy") {
   SceneDef scene = loadScene(sourcePath("samples/fabric_shear.json"));
-  // One cycle: to +u (t = 3), to -u (t = 5), back to +u (t = 7), 2 increments per quarter.
-  // Frictionless and without the sample's damping (friction_factor 0 in every step): with mu =
-  // 0.1 between the yarns one cycle needs the damping and ~20 s of CPU (docs/RESULTS.md), so
-  // no loop area is measured here.
+  // The sample's first cycle (mu = 0.1 between the yarns, damping 0.1 in the shear steps): to
+  // +u (t = 3), to -u (t = 5), back to +u (t = 7), 2 increments per quarter.
   REQUIRE(scene.steps.size() >= 5);
   scene.steps.resize(5);
-  scene.steps[2].increments = 2;
-  scene.steps[3].increments = scene.steps[4].increments = 4;
-  for (StepDef& st : scene.steps) st.frictionFactor = st.damping = 0;
   World w(scene);
   const Index warpEnd = bcOn(w.scene(), "fab.warp.end");
-  runThrough(w, 2);  // the initial geometry, the first quarter
+  const EnergyBalance atPlus = runThrough(w, 2);  // the initial geometry, the first quarter
   const double plus = w.reaction(warpEnd).force.y();
   runThrough(w, 3);  // to -u
   const double minus = w.reaction(warpEnd).force.y();
   CHECK(plus * minus < 0);  // the force changes sign with the displacement
-  CHECK(std::abs(plus) > 1e-3);
-  CHECK(std::abs(minus) > 1e-3);
+  CHECK(std::abs(plus) > 0.05);
+  CHECK(std::abs(minus) > 0.05);
   const EnergyBalance back = runThrough(w, 4);  // back to +u: a closed cycle
   CHECK(w.finished());
-  // Without friction the cycle retraces its path: the same force at +u, and friction's work is
-  // what the energy balance makes of frictionless contact (5e-6 N mm measured, not traced
-  // further), against 1.8e-3 N mm dissipated per cycle with mu = 0.1.
-  CHECK(w.reaction(warpEnd).force.y() == doctest::Approx(plus).epsilon(0.01));
-  CHECK(std::abs(back.friction) < 2e-5);
-  MESSAGE("shear edge force: " << plus << " N at +u, " << minus << " N at -u");
+  CHECK(w.reaction(warpEnd).force.y() == doctest::Approx(plus).epsilon(0.05));
+  // Friction's work on the fibres over the cycle is negative: the loop's dissipated energy,
+  // far above what the balance makes of frictionless contact (5e-6 N mm in such a cycle).
+  const double dissipated = atPlus.friction - back.friction;
+  CHECK(dissipated > 5e-4);
+  MESSAGE("shear edge force: " << plus << " N at +u, " << minus << " N at -u; friction "
+                               << "dissipated over the cycle: " << dissipated << " N mm");
 }
 
 TEST_CASE("fabric loadings: a step's friction_factor is read and must not be negative") {
