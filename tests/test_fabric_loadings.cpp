@@ -3,7 +3,7 @@
 // elements per fibre; scripts/fabric_loadings.py writes them): after the initial geometry
 // (forced normals, then the normal rules, frictionless), biaxial tension converges in every
 // increment with an edge force that rises with the strain from about the small end tensions,
-// equal to minus the sum of the reactions on the opposite edge; one shear cycle gives an edge
+// within 3% of minus the sum of the reactions on the opposite edge; one shear cycle gives an edge
 // force that changes sign with the displacement, and friction between the yarns dissipates
 // energy over the cycle (energy.friction of the energy balance).
 #include "engine/world.h"
