@@ -105,6 +105,7 @@ struct ContactParams {
   ContactClasses pairs;
   // --- forced normals of the current step (StepDef::forcedNormal; set by the step driver) ---
   Vec3 forcedNormal = Vec3::Zero();  // unit; zero: the normal rules of eq. 10
+  double frictionFactor = 1;  // the current step's factor on every mu (StepDef::frictionFactor)
 };
 
 }  // namespace fibra

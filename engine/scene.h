@@ -131,6 +131,9 @@ struct StepDef {
   // During the step, between fibres of different contact classes whose levels differ at the
   // element, N = +D when I's level is the higher, else -D (docs/SCENE.md).
   Vec3 forcedNormal = Vec3::Zero();
+  // Factor on every friction coefficient (fibre pairs and tools) during the step, >= 0: 0 turns
+  // friction off (a forced-normals step), 1 the scene's values.
+  double frictionFactor = 1;
 };
 
 struct ProbeDef {

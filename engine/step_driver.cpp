@@ -60,10 +60,12 @@ double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonR
 }
 
 // The trial starts from the last converged state; the continuation's c/dt for its size; the
-// step's forced normals (zero: the normal rules) for the detections and normal updates.
+// step's forced normals (zero: the normal rules) for the detections and normal updates, and its
+// factor on the friction coefficients.
 void beginAttempt(WorldState& w, const StepDef& st, double size) {
   if (hasContact(w)) w.trial = w.committed;
   w.contact.forcedNormal = st.forcedNormal;
+  w.contact.frictionFactor = st.frictionFactor;
   w.stabilisation.qStart = w.fibres.q;
   w.stabilisation.viscous = st.damping / size;
 }

@@ -128,7 +128,7 @@ StepDef readStep(const Json& j, const std::string& path) {
   const Fields f(j, path,
                  {"name", "end_time", "increments", "max_iterations", "force_tolerance",
                   "increment_tolerance", "max_cutbacks", "line_search", "damping", "output_every",
-                  "forced_normals"});
+                  "forced_normals", "friction_factor"});
   StepDef s;
   s.name = f.string("name", s.name);
   s.endTime = f.number("end_time", s.endTime);
@@ -140,6 +140,7 @@ StepDef readStep(const Json& j, const std::string& path) {
   s.lineSearch = f.boolean("line_search", s.lineSearch);
   s.damping = f.number("damping", s.damping);
   s.outputEvery = f.integer("output_every", s.outputEvery);
+  s.frictionFactor = f.number("friction_factor", s.frictionFactor);
   if (f.has("forced_normals"))
     s.forcedNormal = readForcedNormals(f.at("forced_normals"), f.path("forced_normals"));
   return s;

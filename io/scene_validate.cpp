@@ -375,6 +375,7 @@ void validateSteps(const SceneDef& s) {
     positive(st.incrementTolerance, p + ".increment_tolerance");
     inRange(st.maxCutbacks, 0, StepDef::kMaxCutbacks, p + ".max_cutbacks");
     nonNegative(st.damping, p + ".damping");
+    nonNegative(st.frictionFactor, p + ".friction_factor");
     atLeast(st.outputEvery, 1, p + ".output_every");
   }
 }

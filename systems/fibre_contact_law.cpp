@@ -18,7 +18,7 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
   tbb::parallel_for(Index(0), el.size(), [&](Index e) {
     const Index z = el.zone[e];
     const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
-                               zones.friction[z], p.gMax};
+                               zones.friction[z] * p.frictionFactor, p.gMax};
     if (linearisedNormal(p, el, e)) {
       const LinearisedContact c =
           linearisedContact(fs, fs.q, el, e, law, p.thetaParallel, p.thetaCross);

@@ -20,7 +20,8 @@ void evaluateToolContacts(const FibreStore& fs, const ToolStore& tools, const To
   tbb::parallel_for(Index(0), c.size(), [&](Index i) {
     const Index t = c.tool[i], z = c.zone[i];
     const Vec3 d = particlePosition(fs.q, c.side[i]) - motion[t](c.toolPoint[i]);
-    const ContactLawParams law{zones.penalty[z] * c.weight[i], p.pRegRatio * zones.pMax[z], tools.friction[t], p.gMax};
+    const ContactLawParams law{zones.penalty[z] * c.weight[i], p.pRegRatio * zones.pMax[z],
+                               tools.friction[t] * p.frictionFactor, p.gMax};
     const ContactLawResult r =
         contactLaw(d, {c.normal[i], c.d0[i], c.gRev0[i]}, law, p.symmetrised, status.held[i]);
     storeContactLaw(r, i, out);
