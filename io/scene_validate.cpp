@@ -201,6 +201,7 @@ Names validateFibres(const SceneDef& s, const Names& materials) {
     const std::string p = at("fibres", i);
     resolve(materials, f.material, "material", p + ".material");
     positive(f.radius, p + ".radius");
+    withinScene(f.radius, p + ".radius");
     atLeast(f.elements, 1, p + ".elements");
     checkElementTotal(elements += f.elements, i);
     if (f.order != 1 && f.order != 2)
@@ -469,9 +470,10 @@ void validateTools(const SceneDef& s) {
   for (size_t i = 0; i < s.tools.size(); ++i) {
     const ToolDef& t = s.tools[i];
     const std::string p = at("tools", i);
-    finite(t.point, p + ".point");
+    withinScene(t.point, p + ".point");
     nonZero(t.direction, p + (t.kind == ToolKind::Plane ? ".normal" : ".axis"));
     if (t.kind == ToolKind::Cylinder) positive(t.radius, p + ".radius");
+    if (t.kind == ToolKind::Cylinder) withinScene(t.radius, p + ".radius");
     validateMotion(t, p);
     nonNegative(t.friction, p + ".friction");
     positiveOrDefault(t.maxPenetration, p + ".max_penetration");

@@ -92,8 +92,8 @@ inline bool mentionsCrash(const std::string& output) {
 inline bool namesFieldOrPlace(const std::string& output, const std::string& file) {
   const std::string prefix = "fibra: error: " + file + ": ";
   if (!output.starts_with(prefix)) return false;
-  static const std::regex place(
-      R"(^(line \d+, column \d+|[A-Za-z_][A-Za-z0-9_]*(\[\d+\]|\.[^ :.\[\]]+)*): \S)");
+  // A field path holds the keys as written, so any bytes ("tE,ables: unknown field").
+  static const std::regex place(R"(^(line \d+, column \d+|[^\s:][^\n]*?): \S)");
   return std::regex_search(output.substr(prefix.size()), place);
 }
 

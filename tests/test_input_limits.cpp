@@ -64,6 +64,11 @@ TEST_CASE("a fibre's elements, sectors and coordinates are bounded, with the fie
       {oneFibre("4", R"({"type": "helix", "radius": 1, "pitch": 1, "turns": 1,
                          "axis": [0, 1e308, 0]})"),
        "fibres[0].geometry.axis: is too long: its length overflows a double"},
+      {R"({"units": "mm-N-MPa", "materials": [{"name": "m", "young_modulus": 1000}],
+          "fibres": [{"name": "f", "material": "m", "radius": 1e308, "elements": 4,
+                      "geometry": {"type": "line", "points": [[0, 0, 0], [1, 0, 0]]}}],
+          "steps": [{"end_time": 1}]})",
+       "fibres[0].radius: must be at most 1e+06 mm in size, got 1e+308"},
       {oneFibre("4", R"({"type": "helix", "radius": 1, "pitch": -1e300, "turns": 1})"),
        "fibres[0].geometry.pitch: must be at most 1e+06 mm in size, got -1e+300"},
   };
