@@ -1,5 +1,5 @@
-// The fuzz test's mutants and their verdicts (tests/test_scene_fuzz.cpp, docs/SCENE.md "Bad
-// input"): which samples are mutated, how a mutant is made from a seed and its index, how it is
+// The fuzz test's mutants and their verdicts (tests/test_scene_fuzz.cpp, docs/SCENE.md "Fuzz
+// test"): which samples are mutated, how a mutant is made from a seed and its index, how it is
 // run (tests/limited_child.h) and what it must end with.
 #pragma once
 

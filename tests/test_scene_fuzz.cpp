@@ -6,7 +6,7 @@
 // folder). One valid capped mutant in FIBRA_FUZZ_RUN_EVERY (default 3) is run too: exit 0 or
 // 1, or 143 when the wall-clock limit sent SIGTERM, and no .part file left. A failing mutant is
 // written to BUILD/fuzz_failures/ and its text printed. FIBRA_FUZZ_SEED (default 14) and
-// FIBRA_FUZZ_MUTANTS (default 300) choose the mutants (docs/SCENE.md "Bad input").
+// FIBRA_FUZZ_MUTANTS (default 300) choose the mutants (docs/SCENE.md, "Fuzz test").
 #include "scene_fuzz.h"
 
 #include <doctest/doctest.h>
