@@ -7,6 +7,9 @@
 #include "engine/group_order.h"
 #include "io/json_reader.h"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -42,8 +45,22 @@ void finite(double v, const std::string& path) {
 void finite(const Vec3& v, const std::string& path) {
   if (!v.allFinite()) fail(path, "must be a finite vector");
 }
+// Lengths and coordinates beyond this (mm) are beyond any scene, and their products overflow.
+constexpr double kLongest = 1e6;
+// A position or length in mm: finite and at most kLongest in size.
+void withinScene(double v, const std::string& path) {
+  finite(v, path);
+  if (std::abs(v) > kLongest)
+    fail(path, "must be at most " + num(kLongest) + " mm in size, got " + num(v));
+}
+void withinScene(const Vec3& v, const std::string& path) {
+  finite(v, path);
+  if (v.cwiseAbs().maxCoeff() > kLongest)
+    fail(path, "coordinates must be at most " + num(kLongest) + " mm in size");
+}
 void nonZero(const Vec3& v, const std::string& path) {
   if (!(v.allFinite() && v.norm() > 0)) fail(path, "must be a finite, non-zero vector");
+  if (!std::isfinite(v.norm())) fail(path, "is too long: its length overflows a double");
 }
 // NaN means "the default"; any other value must be positive.
 void positiveOrDefault(double v, const std::string& path) {
@@ -123,7 +140,7 @@ void validatePoints(const GeometryDef& g, const std::string& p) {
   if (g.kind == GeometryKind::Polyline && n < 2)
     fail(p + ".points", "a polyline has at least 2 points, got " + std::to_string(n));
   for (size_t k = 0; k < n; ++k) {
-    finite(g.points[k], at(p + ".points", k));
+    withinScene(g.points[k], at(p + ".points", k));
     if (k > 0 && !((g.points[k] - g.points[k - 1]).norm() > 0))
       fail(at(p + ".points", k), "repeats the previous point");
   }
@@ -136,23 +153,57 @@ void validatePoints(const GeometryDef& g, const std::string& p) {
 
 void validateGeometry(const GeometryDef& g, const std::string& p) {
   if (g.kind != GeometryKind::Helix) return validatePoints(g, p);
-  finite(g.origin, p + ".origin");
+  withinScene(g.origin, p + ".origin");
   nonZero(g.axis, p + ".axis");
   positive(g.helixRadius, p + ".radius");
-  finite(g.pitch, p + ".pitch");
+  withinScene(g.helixRadius, p + ".radius");
+  withinScene(g.pitch, p + ".pitch");
   finite(g.turns, p + ".turns");
   if (g.turns == 0) fail(p + ".turns", "must not be 0");
   finite(g.phase, p + ".phase");
 }
 
+// A scene has at most this many beam elements (the generators' limit too, io/generator_fields.h;
+// the paper's largest scene has 19 200).
+constexpr double kMaxElements = 1e6;
+// What building a scene takes per beam element, measured (about 19 kB with its assembly and
+// contact structures), rounded up.
+constexpr double kBytesPerElement = 24e3;
+
+// The memory this process may use: its address-space limit or the machine's memory.
+double memoryAvailable() {
+  double bytes = double(::sysconf(_SC_PHYS_PAGES)) * double(::sysconf(_SC_PAGESIZE));
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    bytes = std::min(bytes, double(limit.rlim_cur));
+  return bytes;
+}
+
+// The elements of the fibres up to `i` (whose `elements` is named) within the limits on size and
+// memory, checked before anything is allocated.
+void checkElementTotal(double total, size_t i) {
+  const std::string p = at("fibres", i) + ".elements";
+  if (total > kMaxElements)
+    fail(p, "brings the scene to " + num(total) + " beam elements, more than fibra takes (" +
+                num(kMaxElements) + ")");
+  const double need = total * kBytesPerElement, have = memoryAvailable();
+  if (need > have)
+    fail(p, "brings the scene to " + num(total) + " beam elements, which need about " +
+                num(std::ceil(need / 1e8) / 10) + " GB, more than the " +
+                num(std::floor(have / 1e8) / 10) + " GB this process may use");
+}
+
 Names validateFibres(const SceneDef& s, const Names& materials) {
   const Names names = uniqueNames(s.fibres, "fibres");
+  double elements = 0;
   for (size_t i = 0; i < s.fibres.size(); ++i) {
     const FibreDef& f = s.fibres[i];
     const std::string p = at("fibres", i);
     resolve(materials, f.material, "material", p + ".material");
     positive(f.radius, p + ".radius");
+    withinScene(f.radius, p + ".radius");
     atLeast(f.elements, 1, p + ".elements");
+    checkElementTotal(elements += f.elements, i);
     if (f.order != 1 && f.order != 2)
       fail(p + ".order", "must be 1 or 2, got " + std::to_string(f.order));
     validateGeometry(f.geometry, p + ".geometry");
@@ -160,7 +211,7 @@ Names validateFibres(const SceneDef& s, const Names& materials) {
       const int rings = f.integration.rings;
       if (rings < 1 || rings > 4)
         fail(p + ".integration.rings", "must be 1 to 4, got " + std::to_string(rings));
-      atLeast(f.integration.sectors, 3, p + ".integration.sectors");
+      inRange(f.integration.sectors, 3, 360, p + ".integration.sectors");
     }
   }
   return names;
@@ -420,9 +471,10 @@ void validateTools(const SceneDef& s) {
   for (size_t i = 0; i < s.tools.size(); ++i) {
     const ToolDef& t = s.tools[i];
     const std::string p = at("tools", i);
-    finite(t.point, p + ".point");
+    withinScene(t.point, p + ".point");
     nonZero(t.direction, p + (t.kind == ToolKind::Plane ? ".normal" : ".axis"));
     if (t.kind == ToolKind::Cylinder) positive(t.radius, p + ".radius");
+    if (t.kind == ToolKind::Cylinder) withinScene(t.radius, p + ".radius");
     validateMotion(t, p);
     nonNegative(t.friction, p + ".friction");
     positiveOrDefault(t.maxPenetration, p + ".max_penetration");
@@ -499,7 +551,6 @@ void validateContactScale(const SceneDef& s) {
   if (!c.enabled || s.fibres.empty()) return;
   double rMin = s.fibres[0].radius, rMax = rMin;
   for (const FibreDef& f : s.fibres) rMin = std::min(rMin, f.radius), rMax = std::max(rMax, f.radius);
-  constexpr double kLongest = 1e6;  // mm: beyond any scene
   if (std::isfinite(c.proximityDistance) && !(c.proximityDistance > 2 * rMax))
     fail("contact.proximity_distance",
          "must exceed the sum of two touching fibres' radii (2 x " + num(rMax) + " mm), got " +
