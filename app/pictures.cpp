@@ -62,10 +62,11 @@ std::vector<std::string> splitCommas(const std::string& text) {
   return parts;
 }
 
-// A PNG named on the command line is taken from the working directory.
+// A PNG named on the command line is taken from the working directory, the default one lies in
+// RUN_DIR; both made absolute (the library puts a relative name inside RUN_DIR).
 std::string pngPath(const Arguments& a, const std::string& fallbackName) {
   const std::string out = a.get("--out");
-  return out.empty() ? (fs::path(a.runDir) / fallbackName).string() : fs::absolute(out).string();
+  return fs::absolute(out.empty() ? fs::path(a.runDir) / fallbackName : fs::path(out)).string();
 }
 
 // "z=0.25" -> axis 2, value 0.25; "z" -> axis 2, the middle of the span.

@@ -34,7 +34,9 @@ std::string lawLine(const ContactParams& c) {
                            penaltyBounds(c.pairs.penaltyMin[0], c.pairs.penaltyMax[0]).c_str(),
                            initial.c_str(), c.penaltyChange, c.pRegRatio, c.gMax,
                            c.symmetrised ? "symmetrised" : "consistent");
-  if (c.fibres) out += format(", element placement %s", c.weightedElements ? "weighted" : "paper");
+  if (c.fibres) out += format(", element placement %s, normals %s",
+                              c.weightedElements ? "weighted" : "paper",
+                              c.newtonNormals ? "linearised in Newton" : "updated by loop B");
   if (c.mu > 0 || c.tools)  // friction is possible (tools carry their own mu)
     out += c.frictionFlips > 0 ? format(", stick/slip held after %d changes (tolerance %g)",
                                         c.frictionFlips, c.frictionTolerance)

@@ -3,9 +3,12 @@
 contact elements): every fibre's centreline and directors sampled at --samples points per
 element (quadratic elements: Lagrange interpolation of the three nodes), every pair of samples
 on different fibres, or on one fibre more than --min-elements elements apart (self-contact),
-within --reach mm; the overlap of a pair is w_a + w_b - d with d the distance of the two points
-and w = R |G^T n| each fibre's half-width along n = the direction between them (G = [g1 g2]).
-Prints the largest overlap (mm and in units of --pmax) and where it is.
+within --reach mm; each pair closer than 2.2 R is then refined to the closest points of the two
+centrelines near it (alternating golden-section searches within one sample spacing), so a
+crossing between samples is not missed. The overlap of a pair is w_a + w_b - d with d the
+distance of the two points and w = R |G^T n| each fibre's half-width along n = the direction
+between them (G = [g1 g2]). One radius for every fibre (--radius). Prints the largest overlap
+(mm and in units of --pmax) and where it is.
 
   python3 bench/centreline_overlap.py out/plectoneme/final_state.csv --radius 0.1 \
       --pmax 5e-4 --min-elements 4
@@ -16,17 +19,46 @@ import math
 from collections import defaultdict
 
 
-def samples(rows, per_element):
-    """[(element, x0, g1, g2)] along one fibre of quadratic elements."""
-    out = []
+def section(rows, u):
+    """(x0, g1, g2) at element coordinate u in [0, elements] of a fibre of quadratic elements."""
     elements = (len(rows) - 1) // 2
-    for e in range(elements):
-        for k in range(per_element + (e == elements - 1)):
-            z = -1 + 2 * k / per_element
-            N = (z * (z - 1) / 2, 1 - z * z, z * (z + 1) / 2)
-            v = [sum(N[a] * rows[2 * e + a][c] for a in range(3)) for c in range(9)]
-            out.append((e + (z + 1) / 2, v[0:3], v[3:6], v[6:9]))
-    return out
+    e = min(int(u), elements - 1)
+    z = 2 * (u - e) - 1
+    N = (z * (z - 1) / 2, 1 - z * z, z * (z + 1) / 2)
+    v = [sum(N[a] * rows[2 * e + a][c] for a in range(3)) for c in range(9)]
+    return v[0:3], v[3:6], v[6:9]
+
+
+def samples(rows, per_element):
+    """[(element coordinate, x0, g1, g2)] along one fibre."""
+    elements = (len(rows) - 1) // 2
+    return [(u,) + section(rows, u)
+            for u in (k / per_element for k in range(elements * per_element + 1))]
+
+
+def golden(f, a, b, iterations=30):
+    """Argmin of f on [a, b] by golden-section search."""
+    r = (math.sqrt(5) - 1) / 2
+    c, d = b - r * (b - a), a + r * (b - a)
+    for _ in range(iterations):
+        if f(c) < f(d):
+            b, d = d, c
+            c = b - r * (b - a)
+        else:
+            a, c = c, d
+            d = a + r * (b - a)
+    return (a + b) / 2
+
+
+def refine(rows_a, ua, rows_b, ub, step):
+    """The closest points of two centrelines near (ua, ub), within `step` of them."""
+    la, lb = (len(rows_a) - 1) // 2, (len(rows_b) - 1) // 2
+    dist = lambda u, v: math.dist(section(rows_a, u)[0], section(rows_b, v)[0])
+    a0, b0 = ua, ub
+    for _ in range(4):
+        ua = golden(lambda u: dist(u, ub), max(0, a0 - step), min(la, a0 + step))
+        ub = golden(lambda v: dist(ua, v), max(0, b0 - step), min(lb, b0 + step))
+    return ua, ub
 
 
 def half_width(g1, g2, n, radius):
@@ -35,7 +67,8 @@ def half_width(g1, g2, n, radius):
 
 
 def main():
-    p = argparse.ArgumentParser()
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("final_state")
     p.add_argument("--radius", type=float, required=True, help="fibre radius R, mm")
     p.add_argument("--pmax", type=float, default=0, help="p_max, mm (for the ratio)")
@@ -51,19 +84,33 @@ def main():
     pts = [(f, s) for f, rows in fibres.items() for s in samples(rows, a.samples)]
     reach = a.reach or 2.5 * a.radius
     best = (0.0, None, None)
+
+    def consider(fi, ui, fj, uj):
+        nonlocal best
+        xi, g1i, g2i = section(fibres[fi], ui)
+        xj, g1j, g2j = section(fibres[fj], uj)
+        d = math.dist(xi, xj)
+        if d == 0:
+            return
+        n = [(p - q) / d for p, q in zip(xi, xj)]
+        overlap = half_width(g1i, g2i, n, a.radius) + half_width(g1j, g2j, n, a.radius) - d
+        if overlap > best[0]:
+            best = (overlap, (fi, ui, xi), (fj, uj, xj))
+
     for i in range(len(pts)):
-        fi, (ei, xi, g1i, g2i) = pts[i]
+        fi, (ei, xi, _, _) = pts[i]
         for j in range(i + 1, len(pts)):
-            fj, (ej, xj, g1j, g2j) = pts[j]
+            fj, (ej, xj, _, _) = pts[j]
             if fi == fj and abs(ei - ej) < a.min_elements:
                 continue
             d = math.dist(xi, xj)
             if d == 0 or d > reach:
                 continue
-            n = [(u - v) / d for u, v in zip(xi, xj)]
-            overlap = half_width(g1i, g2i, n, a.radius) + half_width(g1j, g2j, n, a.radius) - d
-            if overlap > best[0]:
-                best = (overlap, (fi, ei, xi), (fj, ej, xj))
+            consider(fi, ei, fj, ej)
+            if d < 2.2 * a.radius:
+                ui, uj = refine(fibres[fi], ei, fibres[fj], ej, 1 / a.samples)
+                if fi != fj or abs(ui - uj) >= a.min_elements:
+                    consider(fi, ui, fj, uj)
     overlap, A, B = best
     ratio = f" ({overlap / a.pmax:.2f} p_max)" if a.pmax > 0 else ""
     print(f"largest overlap {overlap:.4g} mm{ratio}")

@@ -422,6 +422,15 @@ TEST_CASE("plot and section: gnuplot draws PNGs of a tiny run (skipped without g
                dir);
   CHECK_MESSAGE(r.status == 0, r.output);
   CHECK(isPng((dir.path() / "run" / "probe.tip.x_vs_time.png").string()));
+  // RUN_DIR given relative to the working directory: the default picture still lies in RUN_DIR
+  // (it went to RUN_DIR/RUN_DIR before), and so does the section's.
+  const std::string relative = fs::relative(dir.path() / "run", fs::current_path()).string();
+  r = runFibra({"plot", relative, "--x", "time", "--y", "total_iterations"}, dir);
+  CHECK_MESSAGE(r.status == 0, r.output);
+  CHECK(isPng((dir.path() / "run" / "total_iterations_vs_time.png").string()));
+  r = runFibra({"section", relative, "--plane", "x=5", "--frame", "1"}, dir);
+  CHECK_MESSAGE(r.status == 0, r.output);
+  CHECK(isPng((dir.path() / "run" / "section.png").string()));
   // A picture named like an option, in a folder of its own, is still a file for gnuplot.
   r = runFibra({"plot", dir / "run", "--x", "time", "--y", "iterations", "--out",
                 dir / "pictures/-v.png"},
