@@ -6,6 +6,7 @@
 // measured from the centrelines, with no warp-weft overlap beyond p_max.
 #include "centreline_measure.h"
 #include "engine/world.h"
+#include "expand_roundtrip.h"
 #include "io/fabric_generator.h"
 #include "io/scene_loader.h"
 #include "io/yarn_generator.h"
@@ -185,15 +186,7 @@ TEST_CASE("woven fabric: union groups hold each yarn's ends, each direction's an
 
 TEST_CASE("woven fabric: fibra expand gives plain JSON that loads to the same fibres") {
   TempDir dir("fabric_expand");
-  fs::create_directories(dir.path());
-  const std::string scene = dir / "fabric.json", expanded = dir / "plain.json";
-  writeFile(scene, "// a comment\n" + fabricScene("twill", 4, 4, 3).dump(2));
-  const RunResult r = runFibra({"expand", scene, "--out", expanded}, dir);
-  REQUIRE(r.status == 0);
-  const std::string text = readFile(expanded);
-  CHECK(text == expandScene(scene));
-  CHECK(Json::parse(text).contains("generators") == false);
-  const SceneDef a = loadScene(scene), b = loadScene(expanded);
+  const auto [a, b] = expandRoundTrip(dir, fabricScene("twill", 4, 4, 3));
   REQUIRE(a.fibres.size() == b.fibres.size());
   for (size_t i = 0; i < a.fibres.size(); ++i) {
     CAPTURE(i);

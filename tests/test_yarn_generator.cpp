@@ -2,6 +2,7 @@
 // reproducibility, the hexagonal section, the perturbation's bound, the twist's helix angle,
 // `fibra expand` and its round trip, field-named errors, and union groups.
 #include "engine/world.h"
+#include "expand_roundtrip.h"
 #include "io/scene_loader.h"
 #include "io/scene_validate.h"
 #include "io/seeded_random.h"
@@ -262,24 +263,17 @@ TEST_CASE("yarn generator: groups of every fibre's ends and of the yarn's ends a
 
 TEST_CASE("fibra expand: the expanded scene loads to the same fibres and groups and solves bitwise the same") {
   TempDir dir("yarn_expand");
-  fs::create_directories(dir.path());
-  const std::string scene = dir / "yarn.json", expanded = dir / "plain.json";
-  writeFile(scene, "// a comment\n" + yarnScene(7, 0.002, 3, 0.25).dump(2));
-  const RunResult r = runFibra({"expand", scene, "--out", expanded}, dir);
-  REQUIRE(r.status == 0);
-  const std::string text = readFile(expanded);
-  CHECK(text == expandScene(scene));
-  CHECK(Json::parse(text).contains("generators") == false);
-  const SceneDef a = loadScene(scene), b = loadScene(expanded);
+  const auto [a, b] = expandRoundTrip(dir, yarnScene(7, 0.002, 3, 0.25));
   CHECK(sameFibresAndGroups(a, b));
   World wa(a), wb(b);
   REQUIRE(wa.step().status == StepStatus::Converged);
   REQUIRE(wb.step().status == StepStatus::Converged);
   CHECK(sameBits(wa.fibres().q, wb.fibres().q));
   // To stdout without --out; a bad scene: exit 2 and the field named.
+  const std::string scene = dir / "generated.json";
   const RunResult out = runFibra({"expand", scene}, dir);
   CHECK(out.status == 0);
-  CHECK(out.output == text);
+  CHECK(out.output == readFile(dir / "plain.json"));
   writeFile(scene, yarnScene(0, 0, 0).dump());
   const RunResult bad = runFibra({"expand", scene}, dir);
   CHECK(bad.status == 2);
