@@ -35,6 +35,7 @@
 #include <tbb/task_arena.h>
 
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -84,6 +85,17 @@ class World {
   const ContactState& contact() const;
   ContactSnapshot contactSnapshot() const;  // all contact elements, flattened for output
   Eigen::VectorXd residual() const;      // r = f_int - f_ext of the current state, all DOFs
+
+  // The last converged state as a binary checkpoint (engine/checkpoint.cpp): positions, the
+  // committed contact state (zones with their identities and penalties, contact elements,
+  // stick/slip statuses, the friction history), the converged residual, the energy balance, the
+  // progress through the steps. A world built from the same scene and restored from it goes on
+  // bitwise as the saved one goes on (docs/SCENE.md "Resuming a run"). For the same fibra version
+  // on the same kind of machine. save: std::runtime_error when the stream fails. restore: a
+  // CheckpointError (core/errors.h) for a stream that is not a whole checkpoint of this scene by
+  // this version, and the world is then unchanged; call between steps.
+  void saveCheckpoint(std::ostream& out) const;
+  void restoreCheckpoint(std::istream& in);
 
   // The stages of an iteration for this scene as Markdown: per stage, every system with the
   // stores it reads and writes (from its signature) and the systems it waits for, and a Mermaid

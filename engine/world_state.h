@@ -97,6 +97,10 @@ void runStage(WorldState& w, TaskGraph& stage, double t, bool withTangent = true
 // Assembles the residual (and so the reactions) of the current state at pseudo-time t.
 void assembleResidual(WorldState& w, double t);
 
+// The checkpoint of the last converged state (World::saveCheckpoint, engine/checkpoint.cpp).
+void saveCheckpoint(const WorldState& w, std::ostream& out);
+void restoreCheckpoint(WorldState& w, std::istream& in);
+
 // Solves the next increment with cutbacks (engine/step_driver.cpp).
 StepReport advance(WorldState& w);
 

@@ -4,6 +4,7 @@
 // cutback, the last converged state may be a sub-increment.
 #include "beam_fixtures.h"
 #include "contact_scenes.h"
+#include "observed_state.h"
 
 #include <doctest/doctest.h>
 
@@ -39,45 +40,6 @@ SceneDef slidingCrossing() {
   slide.maxCutbacks = 0;
   s.steps.push_back(slide);
   return s;
-}
-
-// Everything a user reads of a converged state.
-struct Observed {
-  Eigen::VectorXd q, residual;
-  std::vector<Reaction> reactions;
-  Vec3 toolReaction;
-  ContactSnapshot contacts;
-  double time;
-};
-
-Observed observe(const World& w) {
-  Observed o{w.fibres().q, w.residual(), {}, w.toolReaction(0), w.contactSnapshot(), w.time()};
-  for (Index b = 0; b < w.constraints().size(); ++b) o.reactions.push_back(w.reaction(b));
-  return o;
-}
-
-void checkSame(const Observed& a, const Observed& b) {
-  CHECK(a.time == b.time);
-  CHECK(a.q.cwiseNotEqual(b.q).count() == 0);
-  CHECK(a.residual.cwiseNotEqual(b.residual).count() == 0);
-  REQUIRE(a.reactions.size() == b.reactions.size());
-  for (size_t i = 0; i < a.reactions.size(); ++i) {
-    CHECK(a.reactions[i].force == b.reactions[i].force);
-    CHECK(a.reactions[i].moment == b.reactions[i].moment);
-  }
-  CHECK(a.toolReaction == b.toolReaction);
-  const ContactSnapshot &c = a.contacts, &d = b.contacts;
-  CHECK(c.size() == d.size());
-  CHECK(c.particleI == d.particleI);
-  CHECK(c.particleJ == d.particleJ);
-  CHECK(c.normal == d.normal);
-  CHECK(c.gap == d.gap);
-  CHECK(c.normalForce == d.normalForce);
-  CHECK(c.friction == d.friction);
-  CHECK(c.slip == d.slip);
-  CHECK(c.tool == d.tool);
-  CHECK(c.fibreI == d.fibreI);
-  CHECK(c.fibreJ == d.fibreJ);
 }
 
 // Solves step 1 and returns what it converged to.

@@ -1,0 +1,166 @@
+// Resuming from a checkpoint (World::saveCheckpoint / restoreCheckpoint): a world built from the
+// same scene and restored from the checkpoint of any converged increment ends bitwise where the
+// uninterrupted world ends, with the same iterations on the way; a checkpoint that is truncated,
+// corrupt or of another scene is refused with the reason and leaves the world unchanged.
+#include "contact_scenes.h"
+#include "observed_state.h"
+
+#include <doctest/doctest.h>
+
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace fibra;
+using namespace fibra::test;
+
+namespace {
+
+// Crossing beams pressed together with friction (fibre-fibre 0.2), A resting on a plane tool
+// with friction 0.3; step 2 slides B's ends sideways by 0.3 mm in 6 increments with an iteration
+// limit that forces cutbacks, so that the attempt size carried between increments matters.
+SceneDef slidingCrossing() {
+  SceneDef s = crossingBeams(0.01, 1e-4);
+  s.contact.friction = 0.2;
+  s.contact.maxReversibleSlip = 5e-4;
+  ToolDef floor;
+  floor.name = "floor";
+  floor.point = Vec3(0, 0, -0.1);
+  floor.friction = 0.3;
+  s.tools.push_back(floor);
+  s.steps[0].increments = 3;
+  for (BcDef& b : s.bcs)
+    if (b.group == "B.start" || b.group == "B.end") {
+      b.displacement = Vec3(0.3, 0, 0);
+      b.displacementTable = {{0, 1, 2}, {0, 0, 1}};
+    }
+  StepDef slide;
+  slide.endTime = 2;
+  slide.increments = 6;
+  slide.maxIterations = 6;
+  slide.maxCutbacks = 8;
+  s.steps.push_back(slide);
+  return s;
+}
+
+struct Run {
+  std::vector<std::string> checkpoints;  // after each converged increment
+  std::vector<int> iterations;           // total Newton iterations of each increment
+  int cutbacks = 0;
+  EnergyBalance energy;
+};
+
+// Solves to the end (every increment must converge), saving a checkpoint after each.
+Run solve(World& w) {
+  Run run;
+  while (!w.finished()) {
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    run.iterations.push_back(r.totalIterations);
+    run.cutbacks += r.cutbacks;
+    run.energy = r.energy;
+    std::ostringstream out;
+    w.saveCheckpoint(out);
+    run.checkpoints.push_back(out.str());
+  }
+  return run;
+}
+
+void restore(World& w, const std::string& checkpoint) {
+  std::istringstream in(checkpoint);
+  w.restoreCheckpoint(in);
+}
+
+std::string refusal(World& w, const std::string& checkpoint) {
+  try {
+    restore(w, checkpoint);
+  } catch (const CheckpointError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("a world restored from the checkpoint of any increment ends bitwise where the uninterrupted one ends") {
+  const SceneDef scene = slidingCrossing();
+  World full(scene);
+  const Run reference = solve(full);
+  const Observed end = observe(full);
+  REQUIRE(reference.checkpoints.size() == 9);
+  CHECK(reference.cutbacks > 0);  // the carried attempt size is exercised
+  REQUIRE(end.contacts.size() > 0);
+
+  for (size_t k = 0; k + 1 < reference.checkpoints.size(); ++k) {
+    CAPTURE(k);
+    World resumed(scene);
+    restore(resumed, reference.checkpoints[k]);
+    CHECK(resumed.time() == doctest::Approx(k < 3 ? (k + 1) / 3.0 : 1 + (k - 2) / 6.0));
+    const Run rest = solve(resumed);
+    REQUIRE(rest.iterations.size() == reference.iterations.size() - k - 1);
+    for (size_t i = 0; i < rest.iterations.size(); ++i)
+      CHECK(rest.iterations[i] == reference.iterations[k + 1 + i]);
+    checkSame(observe(resumed), end);
+    CHECK(rest.checkpoints.back() == reference.checkpoints.back());
+    CHECK(rest.energy.friction == reference.energy.friction);
+    CHECK(rest.energy.error() == reference.energy.error());
+  }
+}
+
+TEST_CASE("a resumed world is restored from a checkpoint at its own state: nothing changes") {
+  const SceneDef scene = slidingCrossing();
+  World w(scene);
+  for (int i = 0; i < 4; ++i) REQUIRE(w.step().status == StepStatus::Converged);
+  std::ostringstream out;
+  w.saveCheckpoint(out);
+  const Observed before = observe(w);
+  restore(w, out.str());
+  checkSame(observe(w), before);
+  CHECK(w.currentStep() == 1);
+}
+
+TEST_CASE("a truncated, corrupt or foreign checkpoint is refused with its reason and the world is unchanged") {
+  const SceneDef scene = slidingCrossing();
+  World saved(scene);
+  for (int i = 0; i < 4; ++i) REQUIRE(saved.step().status == StepStatus::Converged);
+  std::ostringstream out;
+  saved.saveCheckpoint(out);
+  const std::string good = out.str();
+
+  World w(scene);
+  REQUIRE(w.step().status == StepStatus::Converged);
+  const Observed before = observe(w);
+
+  CHECK(refusal(w, "") == "not a fibra checkpoint");
+  CHECK(refusal(w, "{\"materials\": []}") == "not a fibra checkpoint");
+  // Every prefix of the file: refused, never a crash or a huge allocation.
+  for (size_t n = 18; n < good.size(); n += 1 + n / 7) {
+    CAPTURE(n);
+    CHECK(refusal(w, good.substr(0, n)).find("truncated") != std::string::npos);
+  }
+  // One flipped bit anywhere after the header: corrupt (checksum or sizes).
+  for (size_t at = 80; at < good.size(); at += 1 + good.size() / 40) {
+    CAPTURE(at);
+    std::string bad = good;
+    bad[at] = char(bad[at] ^ 0x10);
+    const std::string why = refusal(w, bad);
+    CHECK((why.find("corrupt") != std::string::npos || why.find("truncated") != std::string::npos));
+  }
+  // Of another scene: other geometry, or other steps.
+  SceneDef other = scene;
+  other.steps[1].endTime = 3;
+  World foreign(other);
+  CHECK(refusal(foreign, good).find("another scene") != std::string::npos);
+  SceneDef moved = scene;
+  moved.fibres[0].geometry.points[0].x() += 1e-3;
+  World elsewhere(moved);
+  CHECK(refusal(elsewhere, good).find("another scene") != std::string::npos);
+
+  checkSame(observe(w), before);
+  // And the refused world still solves as if nothing had happened.
+  World twin(scene);
+  REQUIRE(twin.step().status == StepStatus::Converged);
+  REQUIRE(w.step().status == StepStatus::Converged);
+  REQUIRE(twin.step().status == StepStatus::Converged);
+  checkSame(observe(w), observe(twin));
+}
