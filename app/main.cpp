@@ -7,6 +7,7 @@
 //   fibra expand SCENE.json [--out FILE]       the scene with its generators expanded
 //   fibra plot RUN_DIR --x C --y C[,C...]      history curves as a PNG (app/pictures.h)
 //   fibra section RUN_DIR [--plane z=VALUE]    the fibres' cross-sections as a PNG
+//   fibra study SCENE.json --vary F=V1,V2 ...  speed against error of variants (app/study.h)
 //   fibra --version
 //
 // Order of work: the scene is loaded, validated and the World built before anything is
@@ -25,6 +26,7 @@
 // cancel callback between Newton iterations and returns the last converged state. A second
 // signal kills the program at once.
 #include "app/pictures.h"
+#include "app/study.h"
 #include "app/terminal.h"
 #include "engine/world.h"
 #include "fibra/version.h"
@@ -70,6 +72,8 @@ const char* const kUsage =
     "       fibra plot RUN_DIR --x COLUMN --y COLUMN[,COLUMN...] [--out FILE.png] [--title T]\n"
     "       fibra section RUN_DIR [--plane AXIS[=VALUE]] [--frame N[,N...]|last]\n"
     "                     [--out FILE.png] [--title T]\n"
+    "       fibra study SCENE.json --vary FIELD=V1,V2,... --observe COLUMN[,COLUMN...]\n"
+    "                   --out DIR [--reference V] [--threads N]\n"
     "       fibra --version | --help\n"
     "\n"
     "run: solves the scene (format: docs/SCENE.md) and writes into DIR (created if needed; the\n"
@@ -89,6 +93,11 @@ const char* const kUsage =
     "normal to the fibres' longest span, at its middle) and draws the sections: FILE.png\n"
     "(default RUN_DIR/section.png; FILE_NNNN.png per frame for several frames), the outlines\n"
     "FILE.dat, the script FILE.gp.\n"
+    "study: runs the scene once per value of FIELD (a path in the scene: fibres[0].elements,\n"
+    "steps[0].increments, solver.strategy), each into DIR/FIELD=VALUE; measures wall time,\n"
+    "Newton iterations and the error of the observed history columns against the reference\n"
+    "(--reference V, else the finest value of a known numeric field): DIR/study.csv, and\n"
+    "DIR/study.png with its script DIR/study.gp (docs/PLOTS.md).\n"
     "Options of run:\n"
     "  --out DIR         output directory (required)\n"
     "  --threads N       worker threads (default: all cores)\n"
@@ -386,6 +395,11 @@ int main(int argc, char** argv) {
     if (command == "expand") return expand(argc, argv);
     if (command == "plot" || command == "section") try {
         return command == "plot" ? pictures::plot(argc, argv) : pictures::section(argc, argv);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+      }
+    if (command == "study") try {
+        return study::study(argc, argv);
       } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
       }

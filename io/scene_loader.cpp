@@ -159,7 +159,25 @@ PlotDef readPlot(const Json& j, const std::string& path) {
   return p;
 }
 
-OutputDef readOutput(const Json& j, const std::string& path) {
+namespace {
+
+// A probe's node: an index within the fibre, or "end", the fibre's last node (order x elements,
+// whatever the mesh). An unknown fibre gives -1, which validation reports with the fibre's name.
+int probeNode(const Fields& pf, const std::vector<FibreDef>& fibres) {
+  if (!pf.at("node").is_string()) return pf.integer("node");
+  const std::string node = pf.string("node");
+  if (node != "end")
+    fail(pf.path("node"), "expected a node index or \"end\", got \"" + shown(node) + "\"");
+  const std::string fibre = pf.string("fibre");
+  for (const FibreDef& f : fibres)
+    if (f.name == fibre) return f.order * f.elements;
+  return -1;
+}
+
+}  // namespace
+
+OutputDef readOutput(const Json& j, const std::string& path,
+                     const std::vector<FibreDef>& fibres) {
   const Fields f(j, path,
                  {"vtu", "vtu_format", "history", "final_state", "moment_point", "probes", "plots"});
   OutputDef o;
@@ -173,7 +191,7 @@ OutputDef readOutput(const Json& j, const std::string& path) {
   if (f.has("probes"))
     forEachItem(f.at("probes"), f.path("probes"), [&](const Json& p, const std::string& at) {
       const Fields pf(p, at, {"name", "fibre", "node"});
-      o.probes.push_back({pf.string("name"), pf.string("fibre"), pf.integer("node")});
+      o.probes.push_back({pf.string("name"), pf.string("fibre"), probeNode(pf, fibres)});
     });
   if (f.has("plots"))
     forEachItem(f.at("plots"), f.path("plots"), [&](const Json& p, const std::string& at) {
@@ -229,7 +247,7 @@ SceneDef readScene(const Json& root) {
   if (f.has("stabilisation"))
     s.stabilisation = readStabilisation(f.at("stabilisation"), "stabilisation");
   if (f.has("solver")) s.solver = readSolver(f.at("solver"), "solver");
-  if (f.has("output")) s.output = readOutput(f.at("output"), "output");
+  if (f.has("output")) s.output = readOutput(f.at("output"), "output", s.fibres);
   return s;
 }
 

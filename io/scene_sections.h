@@ -19,7 +19,8 @@ MaterialDef readMaterial(const Json& j, const std::string& path);
 FibreDef readFibre(const Json& j, const std::string& path);
 GroupDef readGroup(const Json& j, const std::string& path);
 StepDef readStep(const Json& j, const std::string& path);
-OutputDef readOutput(const Json& j, const std::string& path);
+// `fibres`: the scene's, for probes at a fibre's "end".
+OutputDef readOutput(const Json& j, const std::string& path, const std::vector<FibreDef>& fibres);
 
 // scene_loader_motion.cpp
 Tables readTables(const Json& j, const std::string& path);

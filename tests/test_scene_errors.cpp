@@ -281,6 +281,14 @@ TEST_CASE("scene errors: groups, boundary conditions, loads and tables") {
         "s.json: groups[0].nodes: must list at least one node");
   CHECK(errorAfter([](Json& j) { j["output"]["probes"][0]["node"] = -1; }) ==
         "s.json: output.probes[0].node: node -1 outside 0..8 (fibre 'b')");
+  // "end": the fibre's last node whatever its mesh; any other word is an error.
+  CHECK(errorAfter([](Json& j) { j["output"]["probes"][0]["node"] = "end"; }) == "(no error)");
+  CHECK(errorAfter([](Json& j) { j["output"]["probes"][0]["node"] = "tip"; }) ==
+        "s.json: output.probes[0].node: expected a node index or \"end\", got \"tip\"");
+  CHECK(errorAfter([](Json& j) {
+          j["output"]["probes"][0]["node"] = "end";
+          j["output"]["probes"][0]["fibre"] = "c";
+        }) == "s.json: output.probes[0].fibre: unknown fibre 'c' (did you mean 'b'?)");
   CHECK(errorAfter([](Json& j) { j["boundary_conditions"][0]["type"] = "fix"; }) ==
         "s.json: boundary_conditions[0].dofs: required field missing for type \"fix\"");
   CHECK(errorAfter([](Json& j) { j["boundary_conditions"][0]["dofs"] = {"x"}; }) ==

@@ -111,7 +111,7 @@ TEST_CASE("scene loader: the cantilever sample loads to its SceneDef") {
   CHECK_FALSE(s.contact.enabled);
   REQUIRE(s.output.probes.size() == 1);
   CHECK(s.output.probes[0].fibre == "beam");
-  CHECK(s.output.probes[0].node == 20);
+  CHECK(s.output.probes[0].node == 20);  // "end" of 10 quadratic elements
   CHECK(s.output.vtu);
   CHECK(s.output.history);
   CHECK(s.output.finalState);
