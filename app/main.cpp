@@ -2,6 +2,7 @@
 // that solves a scene file and writes its results.
 //
 //   fibra run SCENE.json --out DIR [options]   solve (fibra --help lists the options)
+//   fibra run --resume DIR [options]           go on from DIR's last converged increment
 //   fibra check SCENE.json                     validate, print the problem's size, no solve
 //   fibra describe SCENE.json                  the stages of an iteration, as Markdown
 //   fibra expand SCENE.json [--out FILE]       the scene with its generators expanded
@@ -19,8 +20,10 @@
 // Exit status: 0 solved; 1 an increment failed (after its cutbacks) or output could not be
 // written; 2 bad usage or a bad scene; 130 interrupted by SIGINT, 143 by SIGTERM. On failure and
 // interruption the last converged state is written (a frame, the final state) and the history
-// closed; they are for viewing, a run cannot be resumed from them (docs/SCENE.md "Stopping a
-// run").
+// closed. After every converged increment the state is checkpointed (DIR/resume_state.bin, with
+// the scene kept as DIR/resume_scene.json), so that `fibra run --resume DIR` goes on from the
+// last converged increment of a run that was stopped, failed or killed, and ends bitwise where
+// the uninterrupted run ends (docs/SCENE.md "Stopping and resuming a run").
 //
 // SIGINT and SIGTERM set the program's one process-level flag; the World polls it through its
 // cancel callback between Newton iterations and returns the last converged state. A second
@@ -30,6 +33,7 @@
 #include "app/terminal.h"
 #include "engine/world.h"
 #include "fibra/version.h"
+#include "io/output_file.h"
 #include "io/outputs.h"
 #include "io/scene_loader.h"
 
@@ -66,6 +70,8 @@ extern "C" void onStopSignal(int signal) {
 const char* const kUsage =
     "usage: fibra run SCENE.json --out DIR [--threads N] [--trace FILE] [--vtu-format F]\n"
     "                 [--quiet | --verbose]\n"
+    "       fibra run --resume DIR [--threads N] [--trace FILE] [--vtu-format F]\n"
+    "                 [--quiet | --verbose]\n"
     "       fibra check SCENE.json\n"
     "       fibra describe SCENE.json\n"
     "       fibra expand SCENE.json [--out FILE]\n"
@@ -82,6 +88,8 @@ const char* const kUsage =
     "                               result_contacts_NNNN.vtu, result_tools_NNNN.vtu\n"
     "  history.csv                  one row per converged increment: counters, reactions, probes\n"
     "  final_state.csv              every node's x0, g1, g2 at the last converged state\n"
+    "  resume_state.bin             the last converged state (output.checkpoint), with the\n"
+    "                               scene as resume_scene.json: for --resume\n"
     "check: validates the scene and prints the problem's size and contact parameters.\n"
     "describe: prints the stages of an iteration for the scene (Markdown): every system, the\n"
     "stores it reads and writes, the systems it waits for (docs/ARCHITECTURE.md).\n"
@@ -100,6 +108,8 @@ const char* const kUsage =
     "DIR/study.png with its script DIR/study.gp (docs/PLOTS.md).\n"
     "Options of run:\n"
     "  --out DIR         output directory (required)\n"
+    "  --resume DIR      go on from the last converged increment of the run in DIR (stopped,\n"
+    "                    failed or killed), with its scene; its files are continued\n"
     "  --threads N       worker threads (default: all cores)\n"
     "  --trace FILE      profile: Chrome trace JSON in FILE (open in Perfetto), per-stage\n"
     "                    times in FILE without .json plus .stages.csv\n"
@@ -109,7 +119,7 @@ const char* const kUsage =
     "  --verbose         a line per Newton iteration, and contact details per increment\n"
     "Exit status: 0 solved, 1 an increment failed or output failed, 2 bad usage or scene,\n"
     "130 interrupted (Ctrl-C), 143 terminated (SIGTERM; `timeout` then reports its own 124);\n"
-    "the last converged state and the history are written (for viewing: no resume).\n";
+    "the last converged state and the history are written; --resume goes on from there.\n";
 
 // The usage line of `command` ("fibra plot RUN_DIR ..."), or of run for any other.
 std::string usageLine(const std::string& command) {
@@ -121,6 +131,7 @@ std::string usageLine(const std::string& command) {
 
 struct Options {
   std::string scene, out, trace;
+  bool resume = false;  // --resume DIR: scene and state from DIR, outputs continued there
   int threads = 0;
   std::optional<VtuEncoding> vtuEncoding;
   Verbosity verbosity = Verbosity::Normal;
@@ -152,6 +163,8 @@ VtuEncoding vtuFormat(const std::string& text) {
 bool valueOption(Options& o, const std::string& a, const std::string& v) {
   if (a == "--out")
     o.out = v;
+  else if (a == "--resume")
+    o.out = v, o.resume = true;
   else if (a == "--threads")
     o.threads = positiveInt(v, a);
   else if (a == "--trace")
@@ -164,7 +177,11 @@ bool valueOption(Options& o, const std::string& a, const std::string& v) {
 }
 
 void checkPaths(const Options& o) {
-  if (o.scene.empty()) throw UsageError("missing the scene file");
+  if (o.resume && !o.scene.empty())
+    throw UsageError("--resume: the scene is the one in DIR, give no scene file");
+  if (o.resume && !fs::is_directory(o.out))
+    throw UsageError("--resume: no directory '" + o.out + "'");
+  if (o.scene.empty() && !o.resume) throw UsageError("missing the scene file");
   if (o.out.empty()) throw UsageError("missing --out DIR");
   if (fs::exists(o.out) && !fs::is_directory(o.out))
     throw UsageError("--out: '" + o.out + "' exists and is not a directory");
@@ -189,7 +206,10 @@ Options parseRun(int argc, char** argv) {
       throw UsageError(a == "--quiet" || a == "--verbose"
                            ? "--quiet and --verbose: give at most one of them"
                            : a + ": given twice");
-    if (a == "--out" || a == "--threads" || a == "--trace" || a == "--vtu-format") {
+    if (seen.count("--out") && seen.count("--resume"))
+      throw UsageError("--out and --resume: give one of them (a resumed run writes into DIR)");
+    if (a == "--out" || a == "--resume" || a == "--threads" || a == "--trace" ||
+        a == "--vtu-format") {
       if (i + 1 >= argc) throw UsageError(a + ": missing value");
       valueOption(o, a, argv[++i]);
     } else if (a == "--quiet" || a == "--verbose") {
@@ -302,17 +322,52 @@ WorldDef worldDef(const Options& o, Trace* trace) {
   return def;
 }
 
+// A resumed run's world: the scene kept in DIR, restored from DIR's checkpoint; SceneError
+// messages name the file.
+std::unique_ptr<World> resumeWorld(const std::string& dir, WorldDef def) {
+  const fs::path scene = fs::path(dir) / kResumeSceneFile, state = fs::path(dir) / kCheckpointFile;
+  for (const fs::path& p : {scene, state})
+    if (!fs::exists(p))
+      throw SceneError(p.string() + ": missing: '" + dir +
+                       "' is not the directory of a fibra run, or its scene has "
+                       "output.checkpoint false");
+  std::unique_ptr<World> world = buildWorld(scene.string(), std::move(def));
+  std::ifstream in(state, std::ios::binary);
+  try {
+    world->restoreCheckpoint(in);
+  } catch (const CheckpointError& e) {
+    throw SceneError(state.string() + ": " + e.what());
+  }
+  return world;
+}
+
+// The scene file beside the checkpoint, for `fibra run --resume DIR` (written whole or not).
+void keepScene(const std::string& scene, const std::string& dir) {
+  std::ifstream in(scene, std::ios::binary);
+  OutputFile copy((fs::path(dir) / kResumeSceneFile).string());
+  copy.stream() << in.rdbuf();
+  if (!in) throw std::runtime_error("cannot read " + scene);
+  copy.commit();
+}
+
 int run(const Options& o) {
   std::unique_ptr<Trace> trace = o.trace.empty() ? nullptr : std::make_unique<Trace>();
   std::unique_ptr<World> world;
   try {
-    world = buildWorld(o.scene, worldDef(o, trace.get()));
+    world = o.resume ? resumeWorld(o.out, worldDef(o, trace.get()))
+                     : buildWorld(o.scene, worldDef(o, trace.get()));
   } catch (const SceneError& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kBadInput;
   }
-  if (o.verbosity != Verbosity::Quiet)
-    std::fputs(terminal::describeProblem(*world, o.scene, o.threads).c_str(), stderr);
+  if (o.verbosity != Verbosity::Quiet) {
+    std::fputs(terminal::describeProblem(*world, o.resume ? o.out : o.scene, o.threads).c_str(),
+               stderr);
+    if (o.resume)
+      std::fprintf(stderr, "fibra: resuming %s at t = %g (step %d of %zu)\n", o.out.c_str(),
+                   world->time(), std::min(world->currentStep() + 1, int(world->scene().steps.size())),
+                   world->scene().steps.size());
+  }
   // From here on a signal stops the run cleanly: one that arrives while the outputs are being
   // created cancels the first increment, so the initial state is written and no .part is left.
   struct sigaction action {};
@@ -322,8 +377,13 @@ int run(const Options& o) {
   sigaction(SIGTERM, &action, nullptr);
   std::optional<Outputs> outputs;
   try {
-    clearOutputs(o.out);  // a previous run's frames must not mix with this run's
-    outputs.emplace(o.out, *world, o.vtuEncoding);
+    if (o.resume) {
+      outputs.emplace(o.out, *world, ResumeOutputs{}, o.vtuEncoding);
+    } else {
+      clearOutputs(o.out);  // a previous run's frames must not mix with this run's
+      outputs.emplace(o.out, *world, o.vtuEncoding);
+      if (world->scene().output.checkpoint) keepScene(o.scene, o.out);
+    }
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kFailed;

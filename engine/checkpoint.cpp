@@ -13,10 +13,10 @@
 // fibra version on the same kind of machine):
 //   "fibra-checkpoint\n", u64 length of the body, the body, u64 FNV-1a of the body.
 //   Body: u32 format, the version string, u32 sizeof(Index), u64 scene fingerprint (FNV-1a of
-//   the reference state, the steps' end times and the tool count), then the fields in a fixed
-//   order, each store column by column (core/columns.h reflection): a vector as u64 count then
-//   its elements, a dynamic Eigen matrix as i64 rows, cols then its values, a fixed one as its
-//   values, a struct member by member.
+//   the reference state, the steps' end times, the tool and step counts, contact on or off),
+//   then the fields in a fixed order, each store column by column (core/columns.h reflection):
+//   a vector as u64 count then its elements, a dynamic Eigen matrix as i64 rows, cols then its
+//   values, a fixed one as its values, a struct member by member.
 // A file that is truncated, corrupt, of another version or of another scene is refused with a
 // CheckpointError that says which; nothing of the world is changed then.
 #include "core/columns.h"
@@ -157,8 +157,9 @@ std::uint64_t fingerprint(const WorldState& w) {
   std::uint64_t h = kFnvStart;
   fnv(w.fibres.qRef.data(), std::size_t(w.fibres.qRef.size()) * sizeof(double), h);
   for (const StepDef& s : w.scene.steps) fnv(&s.endTime, sizeof s.endTime, h);
-  const std::uint64_t tools = w.tools.size();
-  fnv(&tools, sizeof tools, h);
+  const std::uint64_t counts[3] = {std::uint64_t(w.tools.size()), w.scene.steps.size(),
+                                   std::uint64_t(w.scene.contact.enabled)};
+  fnv(counts, sizeof counts, h);
   return h;
 }
 

@@ -158,6 +158,8 @@ struct OutputDef {
   VtuEncoding vtuEncoding = VtuEncoding::Binary;
   bool history = true;                  // CSV history
   bool finalState = true;               // every node's x0, g1, g2 at the end
+  bool checkpoint = true;               // the last converged state at every increment, so that
+                                        // `fibra run --resume` can go on from it
   Vec3 momentPoint = Vec3::Zero();      // reactions' moments are taken about this point, mm
   std::vector<ProbeDef> probes;
   std::vector<PlotDef> plots;           // PNGs of history columns, drawn at the end

@@ -146,7 +146,8 @@ std::vector<HistoryColumns> standardHistoryColumns(const World& world) {
           probeColumns(world)};
 }
 
-HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns)
+HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns,
+                             const std::vector<std::string>& rows)
     : columns_(std::move(columns)) {
   std::set<std::string> seen;
   for (const HistoryColumns& family : columns_)
@@ -159,6 +160,7 @@ HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns
   std::string line;
   for (const std::string& name : header_) line += (line.empty() ? "" : ",") + name;
   file_->stream() << line << '\n';
+  for (const std::string& row : rows) file_->stream() << row << '\n';
   file_->flush();
 }
 

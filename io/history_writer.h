@@ -68,9 +68,11 @@ std::vector<HistoryColumns> standardHistoryColumns(const World& world);
 
 class HistoryWriter {
  public:
-  // Writes the header line; throws std::invalid_argument for repeated column names and
-  // std::runtime_error when the file cannot be written.
-  HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns);
+  // Writes the header line, then `rows` (lines without their newline: the rows of a run this one
+  // resumes); throws std::invalid_argument for repeated column names and std::runtime_error
+  // when the file cannot be written.
+  HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns,
+                const std::vector<std::string>& rows = {});
   ~HistoryWriter();  // closes, errors ignored
 
   void append(const World& world, const StepReport& report);  // one row, flushed

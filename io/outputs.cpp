@@ -1,11 +1,16 @@
 #include "io/outputs.h"
 
 #include "core/errors.h"
+#include "io/output_file.h"
 #include "io/plot.h"
 #include "io/state_writer.h"
+#include "io/vtu_reader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <regex>
 #include <stdexcept>
 
@@ -35,7 +40,7 @@ void checkScenePlots(const World& world) {
 int clearOutputs(const std::string& dir) {
   if (!fs::is_directory(dir)) return 0;
   static const std::regex own(
-      R"((result\.pvd|result(_contacts|_tools)?_[0-9]+\.vtu|history\.csv|final_state\.csv)(\.part)?)");
+      R"((result\.pvd|result(_contacts|_tools)?_[0-9]+\.vtu|history\.csv|final_state\.csv|resume_state\.bin|resume_scene\.json)(\.part)?)");
   std::vector<fs::path> doomed;
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), own))
@@ -62,6 +67,104 @@ Outputs::Outputs(const std::string& dir, const World& world, std::optional<VtuEn
   if (def_.history)
     history_.emplace((fs::path(dir) / "history.csv").string(), standardHistoryColumns(world));
   frame(world);
+  checkpoint(world);
+}
+
+Outputs::Outputs(const std::string& dir, const World& world, ResumeOutputs,
+                 std::optional<VtuEncoding> encoding)
+    : dir_(dir), def_(world.scene().output) {
+  checkScenePlots(world);
+  if (!fs::is_directory(dir)) throw std::runtime_error("no directory '" + dir + "'");
+  if (def_.history) resumeHistory(world);
+  if (def_.vtu) {
+    VtuDef vtu;
+    vtu.encoding = encoding.value_or(def_.vtuEncoding);
+    resumeFrames(world, vtu);
+  }
+}
+
+namespace {
+
+std::string readText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  return text.str();
+}
+
+std::vector<std::string> readLines(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  if (in.bad() || lines.empty()) throw std::runtime_error("cannot read " + path.string());
+  return lines;
+}
+
+// The first field of a CSV row (the time column) as a number; NaN when it is not one.
+double firstNumber(const std::string& row) {
+  try {
+    size_t used = 0;
+    const std::string field = row.substr(0, row.find(','));
+    const double v = std::stod(field, &used);
+    return used == field.size() ? v : std::nan("");
+  } catch (const std::exception&) {
+    return std::nan("");
+  }
+}
+
+}  // namespace
+
+// The history of the stopped run (history.csv, or history.csv.part when it was killed): its
+// rows up to the world's time, under the same header.
+void Outputs::resumeHistory(const World& world) {
+  const fs::path done = fs::path(dir_) / "history.csv", part = done.string() + ".part";
+  const fs::path from = fs::exists(done) ? done : part;
+  if (!fs::exists(from)) throw std::runtime_error("no history.csv in '" + dir_ + "'");
+  std::vector<std::string> lines = readLines(from);
+  std::vector<HistoryColumns> columns = standardHistoryColumns(world);
+  std::string header;
+  for (const HistoryColumns& family : columns)
+    for (const std::string& name : family.names) header += (header.empty() ? "" : ",") + name;
+  if (lines[0] != header)
+    throw std::runtime_error(from.string() + ": its columns are not this scene's");
+  std::vector<std::string> rows;
+  for (size_t i = 1; i < lines.size() && firstNumber(lines[i]) <= world.time(); ++i)
+    rows.push_back(lines[i]);
+  history_.emplace(done.string(), std::move(columns), rows);
+}
+
+// The frames of the stopped run up to the world's time; the files of later frames removed.
+void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
+  const fs::path pvd = fs::path(dir_) / "result.pvd";
+  std::vector<double> times;
+  for (const PvdFrame& f : readPvdFrames(readText(pvd)))
+    if (f.time <= world.time()) times.push_back(f.time);
+  static const std::regex frameFile(R"(result(_contacts|_tools)?_([0-9]+)\.vtu(\.part)?)");
+  std::vector<fs::path> later;
+  for (const auto& entry : fs::directory_iterator(dir_)) {
+    std::smatch m;
+    const std::string name = entry.path().filename().string();
+    if (std::regex_match(name, m, frameFile) && std::stol(m[2].str()) >= long(times.size()))
+      later.push_back(entry.path());
+  }
+  for (const fs::path& p : later) fs::remove(p);
+  // The tools are drawn over the extents of the first frame's fibres (io/vtu_writer.h).
+  const SceneDef& s = world.scene();
+  std::vector<ToolExtent> extents;
+  if (!s.tools.empty()) {
+    Eigen::VectorXd q = world.fibres().qRef;
+    const fs::path first = fs::path(dir_) / "result_0000.vtu";
+    const std::vector<double> points = readVtuArrays(readText(first))["Points/"];
+    if (points.size() < 3 * size_t(world.fibres().nodes()))
+      throw std::runtime_error(first.string() + ": not this scene's first frame");
+    for (Index n = 0; n < world.fibres().nodes(); ++n)
+      x0Of(q, n) = Vec3(points[3 * n], points[3 * n + 1], points[3 * n + 2]);
+    extents = toolExtents(world.tools(), world.fibres(), q);
+  }
+  vtu_.emplace(dir_, "result", vtu);
+  vtu_->resume(times, s.contact.enabled || !s.tools.empty(), !s.tools.empty(), std::move(extents));
+  framed_ = times.empty() ? -1 : times.back();
 }
 
 Outputs::~Outputs() = default;
@@ -70,6 +173,16 @@ void Outputs::increment(const World& world, const StepReport& r) {
   if (history_) history_->append(world, r);
   const StepDef& st = world.scene().steps[r.step];
   if (r.increment % st.outputEvery == 0 || r.increment == st.increments) frame(world);
+  checkpoint(world);
+}
+
+// resume_state.bin, replaced whole (io/output_file.h): a run killed at any moment leaves the
+// previous checkpoint or this one.
+void Outputs::checkpoint(const World& world) {
+  if (!def_.checkpoint) return;
+  OutputFile file((fs::path(dir_) / kCheckpointFile).string());
+  world.saveCheckpoint(file.stream());
+  file.commit();
 }
 
 void Outputs::finish(const World& world) {

@@ -15,7 +15,9 @@
 // fibres, part 0), result_contacts_NNNN.vtu (contact elements, part 1, with contact or tools) and
 // result_tools_NNNN.vtu (the tools' surfaces, part 2, with tools); history.csv (one row per
 // converged increment; history.csv.part until finish()); final_state.csv; the PNGs of
-// output.plots with their gnuplot scripts (NAME.gp). Every file appears
+// output.plots with their gnuplot scripts (NAME.gp); with output.checkpoint, resume_state.bin,
+// the last converged state (World::saveCheckpoint), rewritten after every converged increment,
+// from which `Outputs(dir, world, ResumeOutputs{})` continues the files. Every file appears
 // whole or not at all (io/output_file.h). Serial: call from one thread, between world.step()
 // calls (not concurrently with them). Errors: std::runtime_error when a file cannot be written.
 #pragma once
@@ -40,12 +42,26 @@ void checkScenePlots(const World& world);
 // missing directory is fine (0). Throws std::runtime_error when a file cannot be removed.
 int clearOutputs(const std::string& dir);
 
+// The checkpoint a run writes into its directory, and the scene `fibra run` keeps beside it.
+inline constexpr const char* kCheckpointFile = "resume_state.bin";
+inline constexpr const char* kResumeSceneFile = "resume_scene.json";
+
+// Tag of the Outputs constructor that continues a stopped run's files.
+struct ResumeOutputs {};
+
 class Outputs {
  public:
   // Creates `dir` when needed, writes the initial frame and the history's header. The VTU
   // encoding is `encoding`, or the scene's output.vtu_format when nullopt. Throws
   // std::runtime_error when `dir` cannot be created or a file cannot be written.
   Outputs(const std::string& dir, const World& world,
+          std::optional<VtuEncoding> encoding = std::nullopt);
+  // Continues the files of a run in `dir` that stopped, for a world restored from its
+  // checkpoint (World::restoreCheckpoint with dir's resume_state.bin): keeps the history rows and
+  // frames up to world.time(), removes later ones (left by a run killed after its last
+  // checkpoint), then goes on as above. Throws std::runtime_error when dir's history or PVD is
+  // missing or unreadable, or its history has other columns than this world's.
+  Outputs(const std::string& dir, const World& world, ResumeOutputs,
           std::optional<VtuEncoding> encoding = std::nullopt);
   ~Outputs();
 
@@ -67,6 +83,9 @@ class Outputs {
 
  private:
   void frame(const World& world);
+  void checkpoint(const World& world);
+  void resumeHistory(const World& world);
+  void resumeFrames(const World& world, const VtuDef& vtu);
   std::string dir_;
   OutputDef def_;
   std::optional<VtuSeries> vtu_;

@@ -179,7 +179,8 @@ int probeNode(const Fields& pf, const std::vector<FibreDef>& fibres) {
 OutputDef readOutput(const Json& j, const std::string& path,
                      const std::vector<FibreDef>& fibres) {
   const Fields f(j, path,
-                 {"vtu", "vtu_format", "history", "final_state", "moment_point", "probes", "plots"});
+                 {"vtu", "vtu_format", "history", "final_state", "checkpoint", "moment_point",
+                  "probes", "plots"});
   OutputDef o;
   o.vtu = f.boolean("vtu", o.vtu);
   o.vtuEncoding = f.choice("vtu_format",
@@ -187,6 +188,7 @@ OutputDef readOutput(const Json& j, const std::string& path,
                            o.vtuEncoding);
   o.history = f.boolean("history", o.history);
   o.finalState = f.boolean("final_state", o.finalState);
+  o.checkpoint = f.boolean("checkpoint", o.checkpoint);
   o.momentPoint = f.vec3("moment_point", o.momentPoint);
   if (f.has("probes"))
     forEachItem(f.at("probes"), f.path("probes"), [&](const Json& p, const std::string& at) {

@@ -186,6 +186,15 @@ void VtuSeries::write(const VtuFrame& f) {
   writePvd();
 }
 
+void VtuSeries::resume(std::vector<double> times, bool contacts, bool tools,
+                       std::vector<ToolExtent> extents) {
+  times_ = std::move(times);
+  contacts_.assign(times_.size(), contacts);
+  tools_.assign(times_.size(), tools);
+  extents_ = std::move(extents);
+  writePvd();
+}
+
 void VtuSeries::writePvd() const {
   OutputFile pvd(pvdPath());
   std::string text =

@@ -94,6 +94,11 @@ class VtuSeries {
              const ContactSnapshot* contacts = nullptr) {
     write(VtuFrame{fibres, q, time, contacts});
   }
+  // Continues a series whose frames 0 .. times.size() - 1 are on disk (a resumed run), each with
+  // a contact file when `contacts` and a tool file when `tools`, the tools drawn over
+  // `extents`; the next write() is frame times.size(). Rewrites the PVD to list exactly those.
+  void resume(std::vector<double> times, bool contacts, bool tools,
+              std::vector<ToolExtent> extents);
   int frames() const { return int(times_.size()); }
   std::string pvdPath() const;
 

@@ -316,13 +316,13 @@ TEST_CASE("fibra: Ctrl-C stops at the last converged state, writes it and exits 
 TEST_CASE("fibra: SIGTERM stops like Ctrl-C, with the whole history, and exits 143") {
   const std::string message = "fibra: terminated (SIGTERM), wrote the last converged state: t = ";
   stopsCleanly(SIGTERM, 143, message);
-  // The documentation shows that message and status, timeout's own 124, and no resume.
+  // The documentation shows that message and status, timeout's own 124, and the resume.
   std::string doc = readFile(sourcePath("docs/SCENE.md"));
   for (char& c : doc) c = c == '\n' ? ' ' : c;
   for (const std::string& text :
        {"`" + message, std::string("and exits 143. `timeout` itself then exits 124"),
         std::string("`timeout --preserve-status` passes fibra's 143 on"),
-        std::string("fibra has no resume")}) {
+        std::string("`fibra run --resume /tmp/x [--threads N]")}) {
     CAPTURE(text);
     CHECK(doc.find(text) != std::string::npos);
   }
