@@ -140,7 +140,9 @@ TEST_CASE("fibra run into a used --out replaces the earlier run's files and keep
   std::sort(files.begin(), files.end());
   CHECK(files == std::vector<std::string>{"final_state.csv", "history.csv", "notes.txt",
                                           "result.pvd", "result_0000.vtu", "result_0001.vtu",
-                                          "result_0002.vtu"});
+                                          "result_0002.vtu", "resume_scene.json",
+                                          "resume_state.bin"});
+  CHECK(readFile(out + "/resume_scene.json") == readFile(scratch / "sparse.json"));
   CHECK(readFile(out + "/result_0002.vtu").find("format=\"ascii\"") != std::string::npos);
   CHECK(readFile(out + "/notes.txt") == "mine");
   const RunResult bad = runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out,
