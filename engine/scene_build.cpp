@@ -186,6 +186,31 @@ void buildContact(WorldState& w) {
   w.trial = w.committed;
 }
 
+// torsion_factor 0 leaves the twist of a straight fibre's sections about its centreline without
+// stiffness, a zero pivot of the first tangent: the fibre needs the stabilisation's springs, or
+// damping in every step.
+void checkTorsionFree(const SceneDef& s) {
+  const auto damped = [&] {
+    for (const StepDef& st : s.steps)
+      if (!(st.damping > 0)) return false;
+    return true;
+  };
+  for (const FibreDef& f : s.fibres) {
+    size_t m = 0;
+    while (m < s.materials.size() && s.materials[m].name != f.material) ++m;
+    if (m == s.materials.size()) continue;  // reported by buildMaterials
+    if (s.materials[m].torsionFactor != 0 || damped()) continue;
+    const std::vector<std::string>& held = s.stabilisation.fibres;
+    if (s.stabilisation.stiffness > 0 &&
+        (held.empty() || std::find(held.begin(), held.end(), f.name) != held.end()))
+      continue;
+    throw SceneError(at("materials", m) + ".torsion_factor: 0 leaves the twist of fibre '" +
+                     f.name + "' about its centreline without stiffness: give it the "
+                     "stabilisation (stabilisation.stiffness > 0) or damping in every step "
+                     "(docs/SCENE.md, Materials)");
+  }
+}
+
 }  // namespace
 
 void buildWorld(WorldState& w) {
@@ -204,6 +229,7 @@ void buildWorld(WorldState& w) {
   }
   w.solver.setBlasThreads(w.arena->max_concurrency());
   buildMaterials(w);
+  checkTorsionFree(w.scene);
   buildFibres(w);
   buildGroups(w);
   buildConstraints(w);
