@@ -1,5 +1,6 @@
-// Semantic validation of a SceneDef, shared by the scene-file loader and World's constructor:
-// every name resolves, every number is in range, every table is monotone. Throws SceneError
+// Semantic validation of a SceneDef, run by the scene-file loader (and callable on a SceneDef
+// filled in code before it is given to a World, whose constructor checks only what building
+// needs): every name resolves, every number is in range, every table is monotone. Throws SceneError
 // whose message starts with the field path (e.g. "fibres[2].radius: must be > 0, got -1").
 #pragma once
 
