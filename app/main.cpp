@@ -33,7 +33,6 @@
 #include "app/terminal.h"
 #include "engine/world.h"
 #include "fibra/version.h"
-#include "io/output_file.h"
 #include "io/outputs.h"
 #include "io/scene_loader.h"
 
@@ -48,6 +47,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 
 namespace {
@@ -326,11 +326,14 @@ WorldDef worldDef(const Options& o, Trace* trace) {
 // messages name the file.
 std::unique_ptr<World> resumeWorld(const std::string& dir, WorldDef def) {
   const fs::path scene = fs::path(dir) / kResumeSceneFile, state = fs::path(dir) / kCheckpointFile;
-  for (const fs::path& p : {scene, state})
-    if (!fs::exists(p))
-      throw SceneError(p.string() + ": missing: '" + dir +
-                       "' is not the directory of a fibra run, or its scene has "
-                       "output.checkpoint false");
+  if (!fs::exists(state))
+    throw SceneError(state.string() + ": missing: '" + dir +
+                     "' is not the directory of a fibra run, or its scene has "
+                     "output.checkpoint false");
+  if (!fs::exists(scene))
+    throw SceneError(scene.string() + ": missing: the checkpoint is there but not the scene (a "
+                     "run written by a program embedding fibra): copy its scene file there "
+                     "under that name");
   std::unique_ptr<World> world = buildWorld(scene.string(), std::move(def));
   std::ifstream in(state, std::ios::binary);
   try {
@@ -341,13 +344,13 @@ std::unique_ptr<World> resumeWorld(const std::string& dir, WorldDef def) {
   return world;
 }
 
-// The scene file beside the checkpoint, for `fibra run --resume DIR` (written whole or not).
-void keepScene(const std::string& scene, const std::string& dir) {
-  std::ifstream in(scene, std::ios::binary);
-  OutputFile copy((fs::path(dir) / kResumeSceneFile).string());
-  copy.stream() << in.rdbuf();
-  if (!in) throw std::runtime_error("cannot read " + scene);
-  copy.commit();
+// The scene file's text.
+std::string sceneText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) throw std::runtime_error("cannot read " + path);
+  return text.str();
 }
 
 int run(const Options& o) {
@@ -382,11 +385,11 @@ int run(const Options& o) {
     } else {
       clearOutputs(o.out);  // a previous run's frames must not mix with this run's
       outputs.emplace(o.out, *world, o.vtuEncoding);
-      if (world->scene().output.checkpoint) keepScene(o.scene, o.out);
+      outputs->keepScene(sceneText(o.scene));
     }
-  } catch (const std::runtime_error& e) {
+  } catch (const std::runtime_error& e) {  // a damaged run directory is bad input
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
-    return kFailed;
+    return o.resume ? kBadInput : kFailed;
   }
 
   const int status = solve(*world, *outputs, o.verbosity);

@@ -197,6 +197,7 @@ std::string folderName(const std::string& field, const std::string& value) {
 struct Variant {
   std::string text;  // the value as given
   Json value;
+  std::string sceneText;  // the variant's scene, JSON (kept beside its checkpoint)
   SceneDef scene;
   std::string folder;  // DIR/FIELD=VALUE
   // Results
@@ -297,7 +298,8 @@ void prepare(Study& s, Variant& v, const Json& root, const Arguments& a) {
   slot(j, s.path, s.field, a.scene) = v.value;
   const std::string label = "variant " + s.field + "=" + v.text + ": ";
   try {
-    v.scene = loadSceneFromString(j.dump(), a.scene);
+    v.sceneText = j.dump(2);
+    v.scene = loadSceneFromString(v.sceneText, a.scene);
     if (!v.scene.output.history)
       throw SceneError("output.history: is off, and fibra study reads the history");
     WorldDef def;
@@ -360,6 +362,7 @@ void runVariant(Variant& v, int threads) {
   World world(v.scene, def);
   clearOutputs(v.folder);
   Outputs outputs(v.folder, world);
+  outputs.keepScene(v.sceneText);  // a variant stopped part-way: fibra run --resume FOLDER
   while (!world.finished()) {
     const auto start = std::chrono::steady_clock::now();
     const StepReport r = world.step();

@@ -13,8 +13,7 @@
 // fibra version on the same kind of machine):
 //   "fibra-checkpoint\n", u64 length of the body, the body, u64 FNV-1a of the body.
 //   Body: u32 format, the version string, u32 sizeof(Index), u64 scene fingerprint (FNV-1a of
-//   the reference state, the steps' end times, the tool and step counts, contact on or off),
-//   then the fields in a fixed order, each store column by column (core/columns.h reflection):
+//   the scene's fields but those a user may change to get a stopped run going again), then the fields in a fixed order, each store column by column (core/columns.h reflection):
 //   a vector as u64 count then its elements, a dynamic Eigen matrix as i64 rows, cols then its
 //   values, a fixed one as its values, a struct member by member.
 // A file that is truncated, corrupt, of another version or of another scene is refused with a
@@ -91,6 +90,14 @@ void field(A& a, T& v) {
   constexpr bool reading = std::is_same_v<A, Reader>;
   if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
     a.bytes(&v, sizeof v);
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if constexpr (reading) {
+      v.resize(a.count(1));
+    } else {
+      std::uint64_t n = v.size();
+      a.bytes(&n, sizeof n);
+    }
+    a.bytes(v.data(), v.size());
   } else if constexpr (IsStdVector<T>::value) {
     using E = typename T::value_type;
     if constexpr (reading) {
@@ -152,14 +159,28 @@ void carried(A& a, double& time, int& step, int& increment, double& dt, int& eas
   field(a, cliqueKeys);
 }
 
-// The scene a checkpoint belongs to: its reference state and its steps.
+// The scene a checkpoint belongs to: every field of the scene (after its generators) but those
+// a user may change to get a stopped run going again: per step its name, iteration and cutback
+// limits, tolerances, line search, damping and output_every; the solver; the output but its
+// probes (whose nodes the history's columns name).
 std::uint64_t fingerprint(const WorldState& w) {
+  SceneDef s = w.scene;
+  for (StepDef& st : s.steps) {
+    const StepDef d;
+    st.name = d.name, st.maxIterations = d.maxIterations, st.maxCutbacks = d.maxCutbacks;
+    st.forceTolerance = d.forceTolerance, st.incrementTolerance = d.incrementTolerance;
+    st.lineSearch = d.lineSearch, st.damping = d.damping, st.outputEvery = d.outputEvery;
+  }
+  s.solver = SolverDef{};
+  std::vector<ProbeDef> probes = std::move(s.output.probes);
+  s.output = OutputDef{};
+  s.output.probes = std::move(probes);
+  std::ostringstream text;
+  Writer a{text};
+  field(a, s);
   std::uint64_t h = kFnvStart;
-  fnv(w.fibres.qRef.data(), std::size_t(w.fibres.qRef.size()) * sizeof(double), h);
-  for (const StepDef& s : w.scene.steps) fnv(&s.endTime, sizeof s.endTime, h);
-  const std::uint64_t counts[3] = {std::uint64_t(w.tools.size()), w.scene.steps.size(),
-                                   std::uint64_t(w.scene.contact.enabled)};
-  fnv(counts, sizeof counts, h);
+  const std::string bytes = text.str();
+  fnv(bytes.data(), bytes.size(), h);
   return h;
 }
 
@@ -232,15 +253,21 @@ void restoreCheckpoint(WorldState& s, std::istream& file) {
                           "); this is fibra " + FIBRA_VERSION_STRING + " (format " +
                           std::to_string(kFormat) + ")");
   if (scene != fingerprint(s))
-    throw CheckpointError("written for another scene (other reference geometry or steps)");
+    throw CheckpointError(
+        "written for another scene: its fibres, materials, groups, boundary conditions, loads, "
+        "steps, contact, tools, stabilisation or probes differ (only the steps' names, "
+        "iteration and cutback limits, tolerances, line search, damping and output_every, the "
+        "solver and the output but its probes may change)");
   Carried w;
   carried(a, w.time, w.step, w.increment, w.dt, w.easy, w.q, w.convergedQ, w.convergedR,
           w.convergedFext, w.energy, w.committed, w.cliqueKeys);
   if (a.remaining != 0) throw CheckpointError("the file is corrupt (bytes after its end)");
   const Index dofs = Index(s.fibres.q.size());
-  if (Index(w.q.size()) != dofs || Index(w.convergedQ.size()) != dofs ||
-      w.step < 0 || w.step > int(s.scene.steps.size()))
-    throw CheckpointError("written for another scene (sizes differ)");
+  const int steps = int(s.scene.steps.size());
+  if (Index(w.q.size()) != dofs || Index(w.convergedQ.size()) != dofs || w.step < 0 ||
+      w.step > steps || w.increment < 0 ||
+      (w.step < steps && w.increment >= s.scene.steps[size_t(w.step)].increments))
+    throw CheckpointError("the file is corrupt (its progress is not this scene's)");
 
   s.time = w.time, s.step = w.step, s.increment = w.increment, s.dt = w.dt, s.easy = w.easy;
   s.fibres.q = std::move(w.q);

@@ -116,6 +116,9 @@ struct StepDef {
   // half or a quarter) bring an attempt below 1e-15 of its size, past the round-off stop.
   static constexpr int kMaxIterations = 10000;
   static constexpr int kMaxCutbacks = 50;
+  // Each increment writes a history row and a checkpoint (and a frame every output_every-th):
+  // a million per step is past any scene's need and bounds a mistyped 2e9.
+  static constexpr int kMaxIncrements = 1000000;
 
   std::string name;
   double endTime = 1;              // pseudo-time at the end of the step (steps follow each other)

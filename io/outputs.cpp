@@ -1,6 +1,7 @@
 #include "io/outputs.h"
 
 #include "core/errors.h"
+#include "core/format.h"
 #include "io/output_file.h"
 #include "io/plot.h"
 #include "io/state_writer.h"
@@ -81,6 +82,15 @@ Outputs::Outputs(const std::string& dir, const World& world, ResumeOutputs,
     vtu.encoding = encoding.value_or(def_.vtuEncoding);
     resumeFrames(world, vtu);
   }
+  // Without checkpoints from here on, the old one would resume from a state now overwritten.
+  if (!def_.checkpoint) fs::remove(fs::path(dir_) / kCheckpointFile);
+}
+
+void Outputs::keepScene(const std::string& sceneText) {
+  if (!def_.checkpoint) return;
+  OutputFile copy((fs::path(dir_) / kResumeSceneFile).string());
+  copy.stream() << sceneText;
+  copy.commit();
 }
 
 namespace {
@@ -119,7 +129,9 @@ double firstNumber(const std::string& row) {
 // rows up to the world's time, under the same header.
 void Outputs::resumeHistory(const World& world) {
   const fs::path done = fs::path(dir_) / "history.csv", part = done.string() + ".part";
-  const fs::path from = fs::exists(done) ? done : part;
+  // A .part is the newest: left by the last run, killed (a closed history.csv beside it is from
+  // an earlier stop).
+  const fs::path from = fs::exists(part) ? part : done;
   if (!fs::exists(from)) throw std::runtime_error("no history.csv in '" + dir_ + "'");
   std::vector<std::string> lines = readLines(from);
   std::vector<HistoryColumns> columns = standardHistoryColumns(world);
@@ -128,9 +140,23 @@ void Outputs::resumeHistory(const World& world) {
     for (const std::string& name : family.names) header += (header.empty() ? "" : ",") + name;
   if (lines[0] != header)
     throw std::runtime_error(from.string() + ": its columns are not this scene's");
+  // Rows up to the checkpoint, their times increasing, the last one the checkpoint's; what
+  // follows it (rows of increments after the checkpoint, a line cut by a kill) is dropped.
   std::vector<std::string> rows;
-  for (size_t i = 1; i < lines.size() && firstNumber(lines[i]) <= world.time(); ++i)
+  double last = 0;
+  for (size_t i = 1; i < lines.size(); ++i) {
+    const double t = firstNumber(lines[i]);
+    if (t > world.time() || (!(t > last) && last >= world.time())) break;
+    if (!(t > last))
+      throw std::runtime_error(from.string() + ": line " + std::to_string(i + 1) +
+                               " is not a row after t = " + number(last));
     rows.push_back(lines[i]);
+    last = t;
+  }
+  if (last != world.time())
+    throw std::runtime_error(from.string() + ": its rows end at t = " + number(last) +
+                             ", before the checkpoint's t = " + number(world.time()) +
+                             " (rows are missing)");
   history_.emplace(done.string(), std::move(columns), rows);
 }
 
@@ -138,8 +164,16 @@ void Outputs::resumeHistory(const World& world) {
 void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
   const fs::path pvd = fs::path(dir_) / "result.pvd";
   std::vector<double> times;
-  for (const PvdFrame& f : readPvdFrames(readText(pvd)))
-    if (f.time <= world.time()) times.push_back(f.time);
+  try {
+    for (const PvdFrame& f : readPvdFrames(readText(pvd)))
+      if (f.time <= world.time()) {
+        if (!fs::exists(fs::path(dir_) / f.file))
+          throw std::runtime_error("lists " + f.file + ", which is missing");
+        times.push_back(f.time);
+      }
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(pvd.string() + ": " + e.what());
+  }
   static const std::regex frameFile(R"(result(_contacts|_tools)?_([0-9]+)\.vtu(\.part)?)");
   std::vector<fs::path> later;
   for (const auto& entry : fs::directory_iterator(dir_)) {

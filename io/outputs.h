@@ -68,6 +68,10 @@ class Outputs {
   // After every converged increment: a history row, and a frame when the increment is an
   // output_every-th one of its step or the step's last.
   void increment(const World& world, const StepReport& report);
+  // The scene's text (a scene file's, or its JSON) as DIR/resume_scene.json beside the
+  // checkpoint, so that `fibra run --resume DIR` can go on from it; nothing without
+  // output.checkpoint. Throws std::runtime_error when it cannot be written.
+  void keepScene(const std::string& sceneText);
   // At the end of a run (solved, failed or cancelled): the last converged state as a frame
   // (unless it has one), final_state.csv, history.csv closed (renamed from .part), then the
   // scene's output.plots drawn (io/plot.h); a plot that cannot be drawn (no gnuplot, no row)

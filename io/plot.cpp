@@ -84,8 +84,9 @@ std::vector<std::string> readHistoryColumns(const std::string& path, bool needRo
   if (!in) {
     const bool running = fs::exists(path + ".part");
     throw PlotInputError(path + ": cannot read the history" +
-                         (running ? std::string(" (the run is still going: ") + path +
-                                        ".part)"
+                         (running ? std::string(" (the run is still going, or it was killed: ") +
+                                        path + ".part; `fibra run --resume DIR` finishes a "
+                                        "killed run)"
                                   : std::string(" (is it a fibra run's output directory?)")));
   }
   std::string header, row;

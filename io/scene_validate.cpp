@@ -420,7 +420,7 @@ void validateSteps(const SceneDef& s) {
                                 std::string(i ? "the previous step's end, " : "the start, ") +
                                 num(previous) + ", got " + num(st.endTime));
     previous = st.endTime;
-    atLeast(st.increments, 1, p + ".increments");
+    inRange(st.increments, 1, StepDef::kMaxIncrements, p + ".increments");
     inRange(st.maxIterations, 1, StepDef::kMaxIterations, p + ".max_iterations");
     positive(st.forceTolerance, p + ".force_tolerance");
     positive(st.incrementTolerance, p + ".increment_tolerance");

@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -155,6 +156,28 @@ TEST_CASE("a truncated, corrupt or foreign checkpoint is refused with its reason
   moved.fibres[0].geometry.points[0].x() += 1e-3;
   World elsewhere(moved);
   CHECK(refusal(elsewhere, good).find("another scene") != std::string::npos);
+  for (const auto& change : std::vector<std::function<void(SceneDef&)>>{
+           [](SceneDef& d) { d.fibres[1].radius *= 1.01; },
+           [](SceneDef& d) { d.materials[0].youngModulus *= 2; },
+           [](SceneDef& d) { d.loads[0].vector.z() *= 2; },
+           [](SceneDef& d) { d.steps[1].increments = 5; },
+           [](SceneDef& d) { d.contact.friction = 0.3; },
+           [](SceneDef& d) { d.tools[0].friction = 0.1; }}) {
+    SceneDef edited = scene;
+    change(edited);
+    World differs(edited);
+    CHECK(refusal(differs, good).find("another scene") != std::string::npos);
+  }
+  // What a user may change to get a stopped run going: limits, tolerances, damping, output.
+  SceneDef limits = scene;
+  limits.steps[1].maxIterations = 40;
+  limits.steps[1].maxCutbacks = 20;
+  limits.steps[1].damping = 1e-3;
+  limits.steps[1].forceTolerance = 1e-9;
+  limits.output.vtu = false;
+  World relaxed(limits);
+  CHECK(refusal(relaxed, good).empty());
+  CHECK(relaxed.time() == saved.time());
 
   checkSame(observe(w), before);
   // And the refused world still solves as if nothing had happened.

@@ -74,6 +74,21 @@ TEST_CASE("fibra run --resume: a run killed or stopped part-way ends bitwise whe
     CHECK(fs::exists(out + "/resume_state.bin"));
     CHECK(fs::exists(out + "/resume_scene.json"));
 
+    if (signal == SIGTERM) {
+      // A resume killed in its turn leaves history.csv (of the first stop) beside the newer
+      // history.csv.part: the next resume continues the newer.
+      const pid_t pid = startFibra({"run", "--resume", out, "--threads", "1"}, scratch / "r.log");
+      bool more = false;
+      for (int waited = 0; waited < 60000 && !more; waited += 5) {
+        const std::string part = out + "/history.csv.part";
+        more = fs::exists(part) && readCsv(part).size() >= 7;
+        if (!more) ::usleep(5000);
+      }
+      ::kill(pid, SIGKILL);
+      waitStatus(pid);
+      REQUIRE(more);
+      CHECK(fs::exists(out + "/history.csv"));
+    }
     const RunResult resumed = runFibra({"run", "--resume", out, "--threads", "1"}, scratch);
     CAPTURE(resumed.output);
     REQUIRE(resumed.status == 0);
@@ -105,7 +120,7 @@ TEST_CASE("fibra run --resume: no run, a corrupt checkpoint or mixed options are
     CHECK(r.output.find(message) != std::string::npos);
   };
   refused({"run", "--resume", scratch / "none"}, "--resume: no directory");
-  refused({"run", "--resume", empty}, "resume_scene.json: missing: '" + empty +
+  refused({"run", "--resume", empty}, "resume_state.bin: missing: '" + empty +
                                           "' is not the directory of a fibra run");
   refused({"run", sourcePath("samples/cantilever.json"), "--resume", empty},
           "--resume: the scene is the one in DIR, give no scene file");
@@ -115,6 +130,18 @@ TEST_CASE("fibra run --resume: no run, a corrupt checkpoint or mixed options are
   REQUIRE(runFibra({"run", sourcePath("samples/cantilever.json"), "--out", run, "--quiet"},
                    scratch)
               .status == 0);
+  // Missing history rows (a history cut short by hand) are not papered over.
+  const std::string history = readFile(run + "/history.csv");
+  std::string cut = history.substr(0, history.find('\n', history.find('\n') + 1) + 1);
+  writeFile(run + "/history.csv", cut);
+  refused({"run", "--resume", run}, "history.csv: its rows end at t = 0.1, before the checkpoint's "
+                                    "t = 1 (rows are missing)");
+  writeFile(run + "/history.csv", history);
+  // A checkpoint without its scene: a run written by a program embedding fibra.
+  const std::string kept = readFile(run + "/resume_scene.json");
+  fs::remove(run + "/resume_scene.json");
+  refused({"run", "--resume", run}, "the checkpoint is there but not the scene");
+  writeFile(run + "/resume_scene.json", kept);
   std::string state = readFile(run + "/resume_state.bin");
   state[state.size() / 2] = char(state[state.size() / 2] ^ 1);
   writeFile(run + "/resume_state.bin", state);

@@ -197,7 +197,9 @@ TEST_CASE("scene errors: out-of-range numbers") {
           j["fibres"][0]["integration"] = {{"section", "quadrature"}, {"rings", 5}};
         }) == "s.json: fibres[0].integration.rings: must be 1 to 4, got 5");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["increments"] = 0; }) ==
-        "s.json: steps[0].increments: must be >= 1, got 0");
+        "s.json: steps[0].increments: must be in [1, 1000000], got 0");
+  CHECK(errorAfter([](Json& j) { j["steps"][0]["increments"] = 2000000000; }) ==
+        "s.json: steps[0].increments: must be in [1, 1000000], got 2000000000");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["force_tolerance"] = 0; }) ==
         "s.json: steps[0].force_tolerance: must be > 0, got 0");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["max_cutbacks"] = -1; }) ==

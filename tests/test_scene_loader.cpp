@@ -315,5 +315,5 @@ TEST_CASE("validateScene accepts a scene built in code and names fields as the f
   CHECK(errorOf([&] { validateScene(s); }) == "tools[0].axis: must be a finite, non-zero vector");
   s.tools[0].direction = Vec3::UnitZ();
   s.steps[0].increments = 0;
-  CHECK(errorOf([&] { validateScene(s); }) == "steps[0].increments: must be >= 1, got 0");
+  CHECK(errorOf([&] { validateScene(s); }) == "steps[0].increments: must be in [1, 1000000], got 0");
 }

@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
     for (const std::string& line : shared.lines) std::printf("%s\n", line.c_str());
     std::fprintf(stderr, "\n");
     // An Eigen vector made by the library and freed here: the ABI holds (docs/EMBEDDING.md).
-    std::printf("residual of the last converged state: |r| = %.3g N\n",
+    std::printf("residual of the last converged state on all DOFs, the held ones' reactions "
+                "included: |r| = %.3g (N and N mm)\n",
                 world.residual().norm());
     switch (shared.outcome) {
       case fibra::StepStatus::Finished:
