@@ -7,9 +7,10 @@
 //
 //   error = max_k |y(t_k) - y_ref(t_k)| / max_k |y_ref(t_k)|
 //
-// over the reference's rows k whose t_k lies in the variant's span [first t, last t] (the
-// history has no row at t = 0), y(t_k) interpolated linearly in t between the variant's rows
-// (increments and cutbacks make the variants' pseudo-times differ). The final error is
+// over the reference's rows k whose t_k lies in the variant's span [0, last t], y(t_k)
+// interpolated linearly in t between the variant's rows, from its initial state at t = 0 (the
+// history has no row there; increments and cutbacks make the variants' pseudo-times differ), so
+// that a variant of few increments is compared along the whole curve, not at its rows alone. The final error is
 // |y(t_end) - y_ref(t_end)| / |y_ref(t_end)| at each curve's last row. A zero denominator
 // leaves the difference absolute. The reference's own errors are 0.
 //
@@ -205,6 +206,7 @@ struct Variant {
   std::string message;  // why it failed
   double wall = 0;      // s in World::step
   int iterations = 0, increments = 0, cutbacks = 0;
+  std::vector<double> initial;             // per observed column: at t = 0
   std::vector<double> last, error, final;  // per observed column; NaN: none
 };
 
@@ -272,7 +274,7 @@ void chooseReference(Study& s, const std::string& given) {
     const double a = v[i].value.get<double>(), b = v[s.reference].value.get<double>();
     if (larger ? a > b : a < b) s.reference = i;
   }
-  s.why = std::string("the finest: the ") + (larger ? "largest " : "smallest ") + key;
+  s.why = std::string("the finest: the ") + (larger ? "largest" : "smallest") + " value of " + key;
 }
 
 // ---- Validation: every variant loaded and its World built before anything runs ----
@@ -356,10 +358,26 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 // Solves the variant into its folder; counts as fibra run does (a failure's last attempt is
 // the failure, not a cutback).
-void runVariant(Variant& v, int threads) {
+// The observed columns at the initial state, t = 0, as the history's column families give them
+// for a state no increment has reached (the counters 0): where every variant's curve starts.
+std::vector<double> initialValues(const World& world, const std::vector<std::string>& columns) {
+  std::vector<std::string> names;
+  std::vector<double> row;
+  for (const HistoryColumns& family : standardHistoryColumns(world)) {
+    names.insert(names.end(), family.names.begin(), family.names.end());
+    family.values(world, StepReport{}, row);
+  }
+  std::vector<double> values;
+  for (const std::string& c : columns)
+    values.push_back(row[size_t(std::find(names.begin(), names.end(), c) - names.begin())]);
+  return values;
+}
+
+void runVariant(Variant& v, const std::vector<std::string>& columns, int threads) {
   WorldDef def;
   def.threads = threads;
   World world(v.scene, def);
+  v.initial = initialValues(world, columns);
   clearOutputs(v.folder);
   Outputs outputs(v.folder, world);
   outputs.keepScene(v.sceneText);  // a variant stopped part-way: fibra run --resume FOLDER
@@ -447,15 +465,24 @@ double curveError(const Curves& v, const Curves& ref, size_t c) {
   return any ? relative(worst, scale) : kNaN;
 }
 
+// The curve from the initial state on: the history has no row at t = 0.
+void startAtZero(Curves& curves, const std::vector<double>& initial) {
+  if (!curves.t.empty() && !(curves.t.front() > 0)) return;
+  curves.t.insert(curves.t.begin(), 0.0);
+  for (size_t c = 0; c < curves.y.size(); ++c) curves.y[c].insert(curves.y[c].begin(), initial[c]);
+}
+
 void measureErrors(Study& s) {
   const Variant& refVariant = s.variants[s.reference];
-  const Curves ref = readCurves((fs::path(refVariant.folder) / "history.csv").string(), s.columns);
+  Curves ref = readCurves((fs::path(refVariant.folder) / "history.csv").string(), s.columns);
+  startAtZero(ref, refVariant.initial);
   for (Variant& v : s.variants) {
     const size_t n = s.columns.size();
     v.last.assign(n, kNaN);
     v.error.assign(n, kNaN);
     v.final.assign(n, kNaN);
-    const Curves mine = readCurves((fs::path(v.folder) / "history.csv").string(), s.columns);
+    Curves mine = readCurves((fs::path(v.folder) / "history.csv").string(), s.columns);
+    startAtZero(mine, v.initial);
     for (size_t c = 0; c < n && !mine.t.empty(); ++c) v.last[c] = mine.y[c].back();
     if (!v.converged || !refVariant.converged || ref.t.empty()) continue;
     for (size_t c = 0; c < n; ++c) {
@@ -481,6 +508,13 @@ std::string cell(double v) {
   return out;
 }
 
+// A wall time to the microsecond (its noise is larger).
+std::string seconds(double s) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6f", s);
+  return text;
+}
+
 // DIR/study.csv: one row per variant, in the order given.
 void writeCsv(const Study& s, const std::string& path) {
   OutputFile file(path);
@@ -491,7 +525,7 @@ void writeCsv(const Study& s, const std::string& path) {
   for (size_t i = 0; i < s.variants.size(); ++i) {
     const Variant& v = s.variants[i];
     out << s.field << "," << v.text << "," << (i == s.reference) << ","
-        << (v.converged ? "converged" : "failed") << "," << cell(v.wall) << "," << v.iterations
+        << (v.converged ? "converged" : "failed") << "," << seconds(v.wall) << "," << v.iterations
         << "," << v.increments << "," << v.cutbacks;
     for (size_t c = 0; c < s.columns.size(); ++c)
       out << "," << cell(v.last[c]) << "," << cell(v.error[c]) << "," << cell(v.final[c]);
@@ -539,7 +573,7 @@ int runStudy(Study& s, const Arguments& a) {
   fs::create_directories(a.out);
   fs::remove(fs::path(a.out) / "study.png");  // a picture left is this study's
   for (size_t i = 0; i < s.variants.size(); ++i) {
-    runVariant(s.variants[i], a.threads);
+    runVariant(s.variants[i], s.columns, a.threads);
     printProgress(s, i);
   }
   measureErrors(s);

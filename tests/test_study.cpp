@@ -60,7 +60,7 @@ TEST_CASE("study: the cantilever's tip error falls as the elements grow, against
                dir);
   const bool gnuplot = !fibra::findGnuplot().empty();
   REQUIRE_MESSAGE(r.status == (gnuplot ? 0 : 1), r.output);
-  CHECK(contains(r.output, "reference fibres[0].elements=16 (the finest: the largest elements)"));
+  CHECK(contains(r.output, "reference fibres[0].elements=16 (the finest: the largest value of elements)"));
   CHECK(contains(r.output, "fibra: variant 4/4 fibres[0].elements=16: "));
   const StudyCsv csv{readCsv(out + "/study.csv")};
   REQUIRE(csv.rows.size() == 5);
@@ -102,18 +102,20 @@ TEST_CASE("study: the cantilever's tip error falls as the elements grow, against
 TEST_CASE("study: increments compare curves at the reference's times, the ends agree") {
   TempDir dir("study_increments");
   const std::string out = dir / "study";
-  const RunResult r = runFibra({"study", kCantilever, "--vary", "steps[0].increments=2,4,8",
+  const RunResult r = runFibra({"study", kCantilever, "--vary", "steps[0].increments=1,2,4,8",
                                 "--observe", "probe.tip.y", "--out", out, "--threads", "1"},
                                dir);
   REQUIRE_MESSAGE(r.status <= 1, r.output);
   const StudyCsv csv{readCsv(out + "/study.csv")};
-  REQUIRE(csv.rows.size() == 4);
-  CHECK(csv.at(3, "reference") == "1");
+  REQUIRE(csv.rows.size() == 5);
+  CHECK(csv.at(4, "reference") == "1");
   // An elastic dead load: the end state does not depend on the path's steps, the coarse
-  // curves' chords do (interpolated between their rows at the reference's times).
-  for (size_t i = 1; i <= 2; ++i) CHECK(csv.number(i, "final_probe.tip.y") < 1e-10);
+  // curves' chords do (interpolated between their rows at the reference's times, from the
+  // initial state: one increment is a single chord, compared along the whole curve).
+  for (size_t i = 1; i <= 3; ++i) CHECK(csv.number(i, "final_probe.tip.y") < 1e-10);
   CHECK(csv.number(1, "error_probe.tip.y") > csv.number(2, "error_probe.tip.y"));
-  CHECK(csv.number(2, "error_probe.tip.y") > 1e-4);
+  CHECK(csv.number(2, "error_probe.tip.y") > csv.number(3, "error_probe.tip.y"));
+  CHECK(csv.number(3, "error_probe.tip.y") > 1e-4);
 }
 
 TEST_CASE("study: a categorical knob needs --reference, a failed variant is kept in the CSV") {
