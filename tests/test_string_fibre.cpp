@@ -118,7 +118,7 @@ TEST_CASE("bending_factor 0: a slack fibre loaded sideways needs the stabilisati
   CHECK(solves(1e-3));
 }
 
-TEST_CASE("torsion_factor 0: refused without the stabilisation; with it a cantilever follows the elastica") {
+TEST_CASE("torsion_factor 0: refused without the stabilisation, with it a cantilever follows the elastica") {
   BeamSpec b;  // L/R = 100, 10 quadratic elements
   b.torsionFactor = 0;
   const double lambda = 3, P = lambda * bendingStiffness(b) / (b.length * b.length);
