@@ -16,6 +16,7 @@
 #include "engine/world_state.h"
 #include "systems/beam_evaluation.h"
 #include "systems/boundary.h"
+#include "systems/element_stretch.h"
 #include "systems/energy_balance.h"
 #include "systems/newton.h"
 #include "systems/stabilisation.h"
@@ -101,6 +102,19 @@ void discard(WorldState& w) {
   w.system.fext = w.converged.fext;
 }
 
+// A converged state with a folded element is a spurious equilibrium of the material law
+// (systems/element_stretch.h): the attempt fails, and is cut.
+void rejectFolded(const WorldState& w, NewtonResult& r) {
+  const StretchCheck c = smallestStretch(w.fibres, w.fibres.q);
+  if (c.smallest >= kFoldedStretch) return;
+  const Index f = w.fibres.elementFibre[c.element];
+  r.outcome = NewtonOutcome::Failed;
+  r.message = "an element folded: axial stretch " + number(c.smallest) + " in element " +
+              std::to_string(c.element - w.fibres.firstElement[f]) + " of fibre '" +
+              w.fibres.name[f] + "' (below " + number(kFoldedStretch) +
+              ": a spurious state of the Saint Venant-Kirchhoff energy)";
+}
+
 NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStart,
                      StepReport& rep) {
   StepTimings& timings = rep.timings;
@@ -125,6 +139,7 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
       r = solveNewton(w.fibres.q, w.system, w.solver, settings, cb, timings);
     }
   });
+  if (r.outcome == NewtonOutcome::Converged) rejectFolded(w, r);
   if (r.outcome == NewtonOutcome::Converged && w.stabilisation.active) {
     contact.stabilisation = relativeFree(w, springForce(w.fibres, w.stabilisation));
     rep.viscousForce = relativeFree(w, viscousForce(w.fibres, w.stabilisation));

@@ -95,3 +95,31 @@ TEST_CASE("cutbacks stop at the round-off of the pseudo-time with a message that
   CHECK(r.cutbacks < 50);
   CHECK(w.time() < 1e-6);  // attempts below the residual's floor converge at once
 }
+
+TEST_CASE("a converged state with a folded element is rejected and cut, not accepted") {
+  // samples/two_beams_sliding.json's first step (B slid 1 mm along its axis over A, mu = 0.2)
+  // in 10 increments: each first attempt converges to B's first element folded back (a
+  // spurious equilibrium of the Saint Venant-Kirchhoff energy, 14 N of tension in B); it is
+  // cut, and the path ends where 25 increments end.
+  const SceneDef base = loadScene(sourcePath("samples/two_beams_sliding.json"));
+  const auto firstStep = [&](int increments, int& folds) {
+    SceneDef s = base;
+    s.steps.resize(1);
+    s.steps[0].increments = increments;
+    World w(s);
+    folds = 0;
+    while (!w.finished()) {
+      const StepReport r = w.step();
+      REQUIRE(r.status == StepStatus::Converged);
+      folds += r.message.find("an element folded: axial stretch") != std::string::npos;
+    }
+    Index start = 0;
+    while (w.scene().bcs[size_t(start)].group != "B.start") ++start;
+    return w.reaction(start).force.y();
+  };
+  int folds10 = 0, folds25 = 0;
+  const double coarse = firstStep(10, folds10), fine = firstStep(25, folds25);
+  CHECK(folds10 > 0);
+  CHECK(std::abs(coarse - fine) < 0.01 * std::abs(fine));
+  CHECK(std::abs(fine) < 1);  // 0.66 N, not the folded state's 14 N
+}
