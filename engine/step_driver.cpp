@@ -106,7 +106,7 @@ void discard(WorldState& w) {
 // (systems/element_stretch.h): the attempt fails, and is cut.
 void rejectFolded(const WorldState& w, NewtonResult& r) {
   const StretchCheck c = smallestStretch(w.fibres, w.fibres.q);
-  if (c.smallest >= kFoldedStretch) return;
+  if (c.element < 0 || c.smallest >= kFoldedStretch) return;
   const Index f = w.fibres.elementFibre[c.element];
   r.outcome = NewtonOutcome::Failed;
   r.message = "an element folded: axial stretch " + number(c.smallest) + " in element " +

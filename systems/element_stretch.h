@@ -2,9 +2,11 @@
 // state where an element has folded.
 //
 // Reads  FibreStore (order, element nodes, q, qRef).
-// Computes lambda = |dx0/dz| / |dX0/dz| at z = -1, -1/2, 0, 1/2, 1 of every element (the
-//        centreline's stretch; its sign flips through 0 where an element folds back on itself)
-//        and returns the smallest with its element. Serial; 5 points per element.
+// Computes lambda(z) = dx0/dz(z) . t / |dX0/dz(z)| at z = -1, -1/2, 0, 1/2, 1 of every element,
+//        t the unit tangent at the element's middle: the centreline's stretch along the
+//        element's own direction (negative where it runs back: a fold; bending within an element
+//        lowers it only by the cosine of the turn from its middle), and returns the smallest
+//        with its element. Serial; 5 points per element.
 // Why: Saint Venant-Kirchhoff's energy, W = E/8 (lambda^2 - 1)^2 along the axis, stays finite as
 // lambda goes through 0, so Newton can converge to an element compressed through zero length
 // and folded (samples/two_beams_sliding.json's first step in 10 increments: B's first element
@@ -20,7 +22,7 @@ namespace fibra {
 inline constexpr double kFoldedStretch = 0.5;
 
 struct StretchCheck {
-  double smallest = 1;  // smallest axial stretch lambda, - (negative: folded back)
+  double smallest = 1;  // smallest lambda, - (negative: folded back)
   Index element = -1;   // where; -1 without elements
 };
 
