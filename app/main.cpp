@@ -33,6 +33,7 @@
 #include "app/terminal.h"
 #include "engine/world.h"
 #include "fibra/version.h"
+#include "io/output_file.h"
 #include "io/outputs.h"
 #include "io/scene_loader.h"
 
@@ -47,7 +48,6 @@
 #include <memory>
 #include <optional>
 #include <set>
-#include <sstream>
 #include <string>
 
 namespace {
@@ -344,15 +344,6 @@ std::unique_ptr<World> resumeWorld(const std::string& dir, WorldDef def) {
   return world;
 }
 
-// The scene file's text.
-std::string sceneText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw std::runtime_error("cannot read " + path);
-  return text.str();
-}
-
 int run(const Options& o) {
   std::unique_ptr<Trace> trace = o.trace.empty() ? nullptr : std::make_unique<Trace>();
   std::unique_ptr<World> world;
@@ -366,10 +357,10 @@ int run(const Options& o) {
   if (o.verbosity != Verbosity::Quiet) {
     std::fputs(terminal::describeProblem(*world, o.resume ? o.out : o.scene, o.threads).c_str(),
                stderr);
+    const int steps = int(world->scene().steps.size());
     if (o.resume)
-      std::fprintf(stderr, "fibra: resuming %s at t = %g (step %d of %zu)\n", o.out.c_str(),
-                   world->time(), std::min(world->currentStep() + 1, int(world->scene().steps.size())),
-                   world->scene().steps.size());
+      std::fprintf(stderr, "fibra: resuming %s at t = %g (step %d of %d)\n", o.out.c_str(),
+                   world->time(), std::min(world->currentStep() + 1, steps), steps);
   }
   // From here on a signal stops the run cleanly: one that arrives while the outputs are being
   // created cancels the first increment, so the initial state is written and no .part is left.
@@ -385,7 +376,7 @@ int run(const Options& o) {
     } else {
       clearOutputs(o.out);  // a previous run's frames must not mix with this run's
       outputs.emplace(o.out, *world, o.vtuEncoding);
-      outputs->keepScene(sceneText(o.scene));
+      outputs->keepScene(readWholeFile(o.scene));
     }
   } catch (const std::runtime_error& e) {  // a damaged run directory is bad input
     std::fprintf(stderr, "fibra: error: %s\n", e.what());

@@ -13,9 +13,10 @@
 // fibra version on the same kind of machine):
 //   "fibra-checkpoint\n", u64 length of the body, the body, u64 FNV-1a of the body.
 //   Body: u32 format, the version string, u32 sizeof(Index), u64 scene fingerprint (FNV-1a of
-//   the scene's fields but those a user may change to get a stopped run going again), then the fields in a fixed order, each store column by column (core/columns.h reflection):
-//   a vector as u64 count then its elements, a dynamic Eigen matrix as i64 rows, cols then its
-//   values, a fixed one as its values, a struct member by member.
+//   the scene's fields but those a user may change to get a stopped run going again), then the
+//   fields in a fixed order, each store column by column (core/columns.h reflection): a vector
+//   as u64 count then its elements, a dynamic Eigen matrix as i64 rows, cols then its values, a
+//   fixed one as its values, a string as u64 length then its bytes, a struct member by member.
 // A file that is truncated, corrupt, of another version or of another scene is refused with a
 // CheckpointError that says which; nothing of the world is changed then.
 #include "core/columns.h"

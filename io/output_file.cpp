@@ -3,10 +3,20 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 
 namespace fibra {
+
+std::string readWholeFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  if (!(in && text << in.rdbuf()) || std::filesystem::is_directory(path))
+    throw std::runtime_error("cannot read " + path);
+  return text.str();
+}
 
 OutputFile::OutputFile(std::string path)
     : path_(std::move(path)), partPath_(path_ + ".part"), out_(partPath_, std::ios::binary) {

@@ -30,6 +30,9 @@ class OutputFile {
   bool committed_ = false;
 };
 
+// The whole content of a file; std::runtime_error "cannot read PATH" when it cannot be read.
+std::string readWholeFile(const std::string& path);
+
 // Shortest decimal that reads back as exactly v ("0.1", "3", "-2.5e-07", "nan", "inf").
 void appendNumber(std::string& out, double v);
 

@@ -11,7 +11,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <regex>
 #include <stdexcept>
 
@@ -41,7 +40,8 @@ void checkScenePlots(const World& world) {
 int clearOutputs(const std::string& dir) {
   if (!fs::is_directory(dir)) return 0;
   static const std::regex own(
-      R"((result\.pvd|result(_contacts|_tools)?_[0-9]+\.vtu|history\.csv|final_state\.csv|resume_state\.bin|resume_scene\.json)(\.part)?)");
+      R"((result\.pvd|result(_contacts|_tools)?_[0-9]+\.vtu|history\.csv|final_state\.csv|)"
+      R"(resume_state\.bin|resume_scene\.json)(\.part)?)");
   std::vector<fs::path> doomed;
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), own))
@@ -94,14 +94,6 @@ void Outputs::keepScene(const std::string& sceneText) {
 }
 
 namespace {
-
-std::string readText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in) throw std::runtime_error("cannot read " + path.string());
-  return text.str();
-}
 
 std::vector<std::string> readLines(const fs::path& path) {
   std::ifstream in(path);
@@ -165,7 +157,7 @@ void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
   const fs::path pvd = fs::path(dir_) / "result.pvd";
   std::vector<double> times;
   try {
-    for (const PvdFrame& f : readPvdFrames(readText(pvd)))
+    for (const PvdFrame& f : readPvdFrames(readWholeFile(pvd.string())))
       if (f.time <= world.time()) {
         if (!fs::exists(fs::path(dir_) / f.file))
           throw std::runtime_error("lists " + f.file + ", which is missing");
@@ -189,7 +181,7 @@ void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
   if (!s.tools.empty()) {
     Eigen::VectorXd q = world.fibres().qRef;
     const fs::path first = fs::path(dir_) / "result_0000.vtu";
-    const std::vector<double> points = readVtuArrays(readText(first))["Points/"];
+    const std::vector<double> points = readVtuArrays(readWholeFile(first.string()))["Points/"];
     if (points.size() < 3 * size_t(world.fibres().nodes()))
       throw std::runtime_error(first.string() + ": not this scene's first frame");
     for (Index n = 0; n < world.fibres().nodes(); ++n)
