@@ -175,22 +175,24 @@ void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
       later.push_back(entry.path());
   }
   for (const fs::path& p : later) fs::remove(p);
-  // The tools are drawn over the extents of the first frame's fibres (io/vtu_writer.h).
   const SceneDef& s = world.scene();
-  std::vector<ToolExtent> extents;
-  if (!s.tools.empty()) {
-    Eigen::VectorXd q = world.fibres().qRef;
-    const fs::path first = fs::path(dir_) / "result_0000.vtu";
-    const std::vector<double> points = readVtuArrays(readWholeFile(first.string()))["Points/"];
-    if (points.size() < 3 * size_t(world.fibres().nodes()))
-      throw std::runtime_error(first.string() + ": not this scene's first frame");
-    for (Index n = 0; n < world.fibres().nodes(); ++n)
-      x0Of(q, n) = Vec3(points[3 * n], points[3 * n + 1], points[3 * n + 2]);
-    extents = toolExtents(world.tools(), world.fibres(), q);
-  }
   vtu_.emplace(dir_, "result", vtu);
-  vtu_->resume(times, s.contact.enabled || !s.tools.empty(), !s.tools.empty(), std::move(extents));
+  vtu_->resume(times, s.contact.enabled || !s.tools.empty(), !s.tools.empty(),
+               s.tools.empty() ? std::vector<ToolExtent>{} : firstFrameExtents(world));
   framed_ = times.empty() ? -1 : times.back();
+}
+
+// The tools are drawn over the extents of the first frame's fibres (io/vtu_writer.h): read back
+// from result_0000.vtu.
+std::vector<ToolExtent> Outputs::firstFrameExtents(const World& world) const {
+  Eigen::VectorXd q = world.fibres().qRef;
+  const fs::path first = fs::path(dir_) / "result_0000.vtu";
+  const std::vector<double> points = readVtuArrays(readWholeFile(first.string()))["Points/"];
+  if (points.size() < 3 * size_t(world.fibres().nodes()))
+    throw std::runtime_error(first.string() + ": not this scene's first frame");
+  for (Index n = 0; n < world.fibres().nodes(); ++n)
+    x0Of(q, n) = Vec3(points[3 * n], points[3 * n + 1], points[3 * n + 2]);
+  return toolExtents(world.tools(), world.fibres(), q);
 }
 
 Outputs::~Outputs() = default;

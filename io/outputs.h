@@ -90,6 +90,7 @@ class Outputs {
   void checkpoint(const World& world);
   void resumeHistory(const World& world);
   void resumeFrames(const World& world, const VtuDef& vtu);
+  std::vector<ToolExtent> firstFrameExtents(const World& world) const;
   std::string dir_;
   OutputDef def_;
   std::optional<VtuSeries> vtu_;
