@@ -121,11 +121,18 @@ const char* const kUsage =
     "130 interrupted (Ctrl-C), 143 terminated (SIGTERM; `timeout` then reports its own 124);\n"
     "the last converged state and the history are written; --resume goes on from there.\n";
 
-// The usage line of `command` ("fibra plot RUN_DIR ..."), or of run for any other.
+// The usage line of `command` ("fibra plot RUN_DIR ..."), or of run for any other (both of its
+// forms).
 std::string usageLine(const std::string& command) {
   const std::string usage = kUsage;
   size_t at = command.empty() ? std::string::npos : usage.find("fibra " + command + " ");
-  if (at == std::string::npos || at > usage.find("\n\n")) at = usage.find("fibra run");
+  if (at == std::string::npos || at > usage.find("\n\n") || command == "run") {
+    const size_t resume = usage.find("fibra run --resume");
+    const auto line = [&usage](size_t from) {
+      return usage.substr(from, usage.find('\n', from) - from);
+    };
+    return line(usage.find("fibra run")) + "\n       " + line(resume);
+  }
   return usage.substr(at, usage.find('\n', at) - at);
 }
 
