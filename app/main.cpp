@@ -399,8 +399,10 @@ int run(const Options& o) {
 // (describe) or its size and parameters (check) on stdout.
 int inspect(int argc, char** argv, bool describe) {
   const std::string command = argv[1];
-  if (argc != 3 || std::string(argv[2]).starts_with("-"))
-    throw UsageError(command + ": expected exactly one scene file");
+  for (int i = 2; i < argc; ++i)
+    if (std::string(argv[i]).starts_with("-"))
+      throw UsageError(command + ": unknown option '" + argv[i] + "' (it takes a scene file only)");
+  if (argc != 3) throw UsageError(command + ": expected exactly one scene file");
   try {
     const std::unique_ptr<World> world = buildWorld(argv[2], WorldDef{});
     const std::string text =

@@ -88,6 +88,10 @@ TEST_CASE("fibra describe prints the scene's stages, a bad scene or a bad call e
   const RunResult none = runFibra({"describe"}, scratch);
   CHECK(none.status == 2);
   CHECK(none.output.starts_with("fibra: describe: expected exactly one scene file\n"));
+  const RunResult option = runFibra({"check", bad, "--out", "x"}, scratch);
+  CHECK(option.status == 2);
+  CHECK(option.output.starts_with(
+      "fibra: check: unknown option '--out' (it takes a scene file only)\n"));
 }
 
 TEST_CASE("fibra: usage errors exit 2 and create nothing, --help exits 0") {
