@@ -332,9 +332,13 @@ Study prepareStudy(const Arguments& a) {
     if (!folders.insert(folderName(s.field, text)).second)
       throw std::invalid_argument("--vary: values give the same folder " +
                                   folderName(s.field, text));
+    const Json value = parseValue(text);
+    for (const Variant& other : s.variants)
+      if (other.value == value)
+        throw std::invalid_argument("--vary: '" + text + "' is the value of '" + other.text + "'");
     Variant& v = s.variants.emplace_back();
     v.text = text;
-    v.value = parseValue(text);
+    v.value = value;
   }
   if (s.variants.size() < 2) throw std::invalid_argument("--vary: give at least two values");
   if (fs::exists(a.out) && !fs::is_directory(a.out))

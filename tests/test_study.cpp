@@ -190,7 +190,8 @@ TEST_CASE("study: bad fields, values and columns exit 2 before anything runs or 
            {"fibres[0].elements=2", "--vary: give at least two values"},
            {"fibres[0]..elements=2,4", "--vary: expected a field path"},
            {"fibres[0].elements", "--vary: expected FIELD=V1,V2,..."},
-           {"fibres[0].elements=2,2", "--vary: '2' twice"}}) {
+           {"fibres[0].elements=2,2", "--vary: '2' twice"},
+           {"fibres[0].elements=4,4.0", "--vary: '4.0' is the value of '4'"}}) {
     r = study(vary);
     CHECK_MESSAGE(r.status == 2, r.output);
     CHECK_MESSAGE(contains(r.output, message), r.output);
