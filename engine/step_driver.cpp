@@ -109,7 +109,9 @@ void rejectFolded(const WorldState& w, NewtonResult& r) {
   if (c.element < 0 || c.smallest >= kFoldedStretch) return;
   const Index f = w.fibres.elementFibre[c.element];
   r.outcome = NewtonOutcome::Failed;
-  r.message = "an element folded: axial stretch " + number(c.smallest) + " in element " +
+  r.message = std::string("an element folded: ") +
+              (c.volume ? "section volume ratio " : "axial stretch ") + number(c.smallest) +
+              " in element " +
               std::to_string(c.element - w.fibres.firstElement[f]) + " of fibre '" +
               w.fibres.name[f] + "' (below " + number(kFoldedStretch) +
               ": a spurious state of the Saint Venant-Kirchhoff energy)";

@@ -111,15 +111,20 @@ TEST_CASE("a converged state with a folded element is rejected and cut, not acce
     while (!w.finished()) {
       const StepReport r = w.step();
       REQUIRE(r.status == StepStatus::Converged);
-      folds += r.message.find("an element folded: axial stretch") != std::string::npos;
+      folds += r.message.find("an element folded: ") != std::string::npos;
     }
     Index start = 0;
     while (w.scene().bcs[size_t(start)].group != "B.start") ++start;
     return w.reaction(start).force.y();
   };
-  int folds10 = 0, folds25 = 0;
-  const double coarse = firstStep(10, folds10), fine = firstStep(25, folds25);
+  // In 5 increments the first attempt converged to B's first section turned over against its
+  // axis (a director tilted into it, section volume ratio < 0; 4.3 N of tension).
+  int folds5 = 0, folds10 = 0, folds25 = 0;
+  const double coarser = firstStep(5, folds5), coarse = firstStep(10, folds10),
+               fine = firstStep(25, folds25);
+  CHECK(folds5 > 0);
   CHECK(folds10 > 0);
+  CHECK(std::abs(coarser - fine) < 0.01 * std::abs(fine));
   CHECK(std::abs(coarse - fine) < 0.01 * std::abs(fine));
-  CHECK(std::abs(fine) < 1);  // 0.66 N, not the folded state's 14 N
+  CHECK(std::abs(fine) < 1);  // 0.66 N, not the folded states' 14 N and 4.3 N
 }
