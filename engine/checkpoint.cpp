@@ -162,10 +162,14 @@ void carried(A& a, double& time, int& step, int& increment, double& dt, int& eas
 
 // The scene a checkpoint belongs to: every field of the scene (after its generators) but those
 // a user may change to get a stopped run going again: per step its name, iteration and cutback
-// limits, tolerances, line search, damping and output_every; the solver; the output but its
-// probes (whose nodes the history's columns name).
+// limits, tolerances, line search, damping (where some step has damping) and output_every; the
+// solver; the output but its probes (whose nodes the history's columns name).
 std::uint64_t fingerprint(const WorldState& w) {
   SceneDef s = w.scene;
+  // Whether some step has damping sets the history's columns (viscous_force): a damping may
+  // change, not come or go.
+  bool damped = false;
+  for (const StepDef& st : s.steps) damped = damped || st.damping > 0;
   for (StepDef& st : s.steps) {
     const StepDef d;
     st.name = d.name, st.maxIterations = d.maxIterations, st.maxCutbacks = d.maxCutbacks;
@@ -179,6 +183,7 @@ std::uint64_t fingerprint(const WorldState& w) {
   std::ostringstream text;
   Writer a{text};
   field(a, s);
+  field(a, damped);
   std::uint64_t h = kFnvStart;
   const std::string bytes = text.str();
   fnv(bytes.data(), bytes.size(), h);
@@ -256,9 +261,10 @@ void restoreCheckpoint(WorldState& s, std::istream& file) {
   if (scene != fingerprint(s))
     throw CheckpointError(
         "written for another scene: its fibres, materials, groups, boundary conditions, loads, "
-        "steps, contact, tools, stabilisation or probes differ (only the steps' names, "
-        "iteration and cutback limits, tolerances, line search, damping and output_every, the "
-        "solver and the output but its probes may change)");
+        "steps, contact, tools, stabilisation or probes differ, or damping was switched on or "
+        "off (only the steps' names, iteration and cutback limits, tolerances, line search, "
+        "damping where some step has it, and output_every, the solver and the output but its "
+        "probes may change)");
   Carried w;
   carried(a, w.time, w.step, w.increment, w.dt, w.easy, w.q, w.convergedQ, w.convergedR,
           w.convergedFext, w.energy, w.committed, w.cliqueKeys);

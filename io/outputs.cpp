@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -136,12 +137,15 @@ void Outputs::resumeHistory(const World& world) {
   // follows it (rows of increments after the checkpoint, a line cut by a kill) is dropped.
   std::vector<std::string> rows;
   double last = 0;
+  const auto fields = [](const std::string& line) {
+    return std::count(line.begin(), line.end(), ',');
+  };
   for (size_t i = 1; i < lines.size(); ++i) {
     const double t = firstNumber(lines[i]);
     if (t > world.time() || (!(t > last) && last >= world.time())) break;
-    if (!(t > last))
+    if (!(t > last) || fields(lines[i]) != fields(header))
       throw std::runtime_error(from.string() + ": line " + std::to_string(i + 1) +
-                               " is not a row after t = " + number(last));
+                               " is not a whole row after t = " + number(last));
     rows.push_back(lines[i]);
     last = t;
   }
@@ -156,13 +160,25 @@ void Outputs::resumeHistory(const World& world) {
 void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
   const fs::path pvd = fs::path(dir_) / "result.pvd";
   std::vector<double> times;
+  const SceneDef& s = world.scene();
+  const bool contacts = s.contact.enabled || !s.tools.empty(), tools = !s.tools.empty();
+  // The frames listed up to the checkpoint, each with its files; the PVD is rewritten after
+  // every frame, so at most one frame (the next, of an increment after the checkpoint) may be
+  // on disk beyond them.
   try {
-    for (const PvdFrame& f : readPvdFrames(readWholeFile(pvd.string())))
-      if (f.time <= world.time()) {
-        if (!fs::exists(fs::path(dir_) / f.file))
-          throw std::runtime_error("lists " + f.file + ", which is missing");
-        times.push_back(f.time);
+    for (const PvdFrame& f : readPvdFrames(readWholeFile(pvd.string()))) {
+      if (f.time > world.time()) break;
+      const int i = int(times.size());
+      for (const char* part : {"", "_contacts", "_tools"}) {
+        const bool expected = part[1] == 'c' ? contacts : part[1] == 't' ? tools : true;
+        char name[64];
+        std::snprintf(name, sizeof name, "result%s_%04d.vtu", part, i);
+        if (expected && !fs::exists(fs::path(dir_) / name))
+          throw std::runtime_error("lists frame " + std::to_string(i) + ", whose " + name +
+                                   " is missing");
       }
+      times.push_back(f.time);
+    }
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(pvd.string() + ": " + e.what());
   }
@@ -171,14 +187,18 @@ void Outputs::resumeFrames(const World& world, const VtuDef& vtu) {
   for (const auto& entry : fs::directory_iterator(dir_)) {
     std::smatch m;
     const std::string name = entry.path().filename().string();
-    if (std::regex_match(name, m, frameFile) && std::stol(m[2].str()) >= long(times.size()))
-      later.push_back(entry.path());
+    if (!std::regex_match(name, m, frameFile)) continue;
+    const long index = std::stol(m[2].str());
+    if (index > long(times.size()))
+      throw std::runtime_error(pvd.string() + ": lists " + std::to_string(times.size()) +
+                               " frames up to the checkpoint, but " + name +
+                               " is there too (a damaged PVD)");
+    if (index == long(times.size())) later.push_back(entry.path());
   }
   for (const fs::path& p : later) fs::remove(p);
-  const SceneDef& s = world.scene();
   vtu_.emplace(dir_, "result", vtu);
-  vtu_->resume(times, s.contact.enabled || !s.tools.empty(), !s.tools.empty(),
-               s.tools.empty() ? std::vector<ToolExtent>{} : firstFrameExtents(world));
+  vtu_->resume(times, contacts, tools,
+               tools ? firstFrameExtents(world) : std::vector<ToolExtent>{});
   framed_ = times.empty() ? -1 : times.back();
 }
 

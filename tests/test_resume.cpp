@@ -162,22 +162,33 @@ TEST_CASE("a truncated, corrupt or foreign checkpoint is refused with its reason
            [](SceneDef& d) { d.loads[0].vector.z() *= 2; },
            [](SceneDef& d) { d.steps[1].increments = 5; },
            [](SceneDef& d) { d.contact.friction = 0.3; },
-           [](SceneDef& d) { d.tools[0].friction = 0.1; }}) {
+           [](SceneDef& d) { d.tools[0].friction = 0.1; },
+           [](SceneDef& d) { d.steps[1].damping = 1e-3; }}) {  // no step had damping
     SceneDef edited = scene;
     change(edited);
     World differs(edited);
     CHECK(refusal(differs, good).find("another scene") != std::string::npos);
   }
-  // What a user may change to get a stopped run going: limits, tolerances, damping, output.
+  // What a user may change to get a stopped run going: limits, tolerances, output, and the
+  // damping of a scene that has some.
   SceneDef limits = scene;
   limits.steps[1].maxIterations = 40;
   limits.steps[1].maxCutbacks = 20;
-  limits.steps[1].damping = 1e-3;
   limits.steps[1].forceTolerance = 1e-9;
   limits.output.vtu = false;
   World relaxed(limits);
   CHECK(refusal(relaxed, good).empty());
   CHECK(relaxed.time() == saved.time());
+  SceneDef damped = scene;
+  damped.steps[0].damping = 1e-3;
+  World dampedWorld(damped);
+  for (int i = 0; i < 4; ++i) REQUIRE(dampedWorld.step().status == StepStatus::Converged);
+  std::ostringstream dampedState;
+  dampedWorld.saveCheckpoint(dampedState);
+  damped.steps[0].damping = 2e-3;
+  damped.steps[1].damping = 1e-3;
+  World moreDamped(damped);
+  CHECK(refusal(moreDamped, dampedState.str()).empty());
 
   checkSame(observe(w), before);
   // And the refused world still solves as if nothing had happened.

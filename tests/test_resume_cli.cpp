@@ -146,6 +146,19 @@ TEST_CASE("fibra run --resume: no run, a corrupt checkpoint or mixed options are
   refused({"run", "--resume", run}, "history.csv: its rows end at t = 0.1, before the checkpoint's "
                                     "t = 1 (rows are missing)");
   writeFile(run + "/history.csv", history);
+  // A row cut by hand in the middle.
+  writeFile(run + "/history.csv", history.substr(0, history.size() - 40));
+  refused({"run", "--resume", run}, "is not a whole row after t = ");
+  writeFile(run + "/history.csv", history);
+  // A PVD cut short while later frames are on disk, a frame's file deleted.
+  const std::string pvd = readFile(run + "/result.pvd");
+  writeFile(run + "/result.pvd", pvd.substr(0, pvd.find("result_0005.vtu")) + "\"/>\n");
+  refused({"run", "--resume", run}, "frames up to the checkpoint, but result_0");
+  writeFile(run + "/result.pvd", pvd);
+  const std::string frame = readFile(run + "/result_0004.vtu");
+  fs::remove(run + "/result_0004.vtu");
+  refused({"run", "--resume", run}, "lists frame 4, whose result_0004.vtu is missing");
+  writeFile(run + "/result_0004.vtu", frame);
   // A checkpoint without its scene: a run written by a program embedding fibra.
   const std::string kept = readFile(run + "/resume_scene.json");
   fs::remove(run + "/resume_scene.json");
