@@ -12,8 +12,8 @@
 //   fibra --version
 //
 // Order of work: the scene is loaded, validated and the World built before anything is
-// created, so bad input leaves no trace on disk (exit 2). Then fibra's own files from an earlier
-// run in DIR are removed (io/outputs.h: clearOutputs; other files stay) and DIR is filled by
+// created, so bad input leaves no trace on disk (exit 2). Then DIR is locked for the run's life
+// (a second run into it exits 1), fibra's own files from an earlier run in DIR are removed (io/outputs.h: clearOutputs; other files stay) and DIR is filled by
 // fibra::Outputs. Progress goes to stderr: a header, one line per converged increment (per
 // Newton iteration too with --verbose; none with --quiet), a summary (app/terminal.h).
 //
@@ -36,6 +36,10 @@
 #include "io/output_file.h"
 #include "io/outputs.h"
 #include "io/scene_loader.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -329,6 +333,33 @@ WorldDef worldDef(const Options& o, Trace* trace) {
   return def;
 }
 
+// An exclusive lock on the output directory for the run's life (flock on the directory itself:
+// no file is added, and the lock goes with the process however it ends), so that two runs
+// cannot write, clear or resume the same DIR at once.
+class DirectoryLock {
+ public:
+  DirectoryLock() = default;
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+  ~DirectoryLock() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  // Creates `dir` when needed; std::runtime_error when another run holds it.
+  void take(const std::string& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw std::runtime_error("cannot create '" + dir + "': " + ec.message());
+    fd_ = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd_ < 0) throw std::runtime_error("cannot open '" + dir + "'");
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0)
+      throw std::runtime_error("another fibra run is writing into '" + dir +
+                               "' (wait for it to end, or stop it)");
+  }
+
+ private:
+  int fd_ = -1;
+};
+
 // A resumed run's world: the scene kept in DIR, restored from DIR's checkpoint; SceneError
 // messages name the file.
 std::unique_ptr<World> resumeWorld(const std::string& dir, WorldDef def) {
@@ -377,6 +408,13 @@ int run(const Options& o) {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   std::optional<Outputs> outputs;
+  DirectoryLock lock;
+  try {
+    lock.take(o.out);
+  } catch (const std::runtime_error& e) {
+    std::fprintf(stderr, "fibra: error: %s\n", e.what());
+    return kFailed;
+  }
   try {
     if (o.resume) {
       outputs.emplace(o.out, *world, ResumeOutputs{}, o.vtuEncoding);

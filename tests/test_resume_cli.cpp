@@ -181,3 +181,32 @@ TEST_CASE("fibra run --resume: no run, a corrupt checkpoint or mixed options are
   refused({"run", "--resume", plain}, "is not the directory of a fibra run, or its scene has "
                                       "output.checkpoint false");
 }
+
+TEST_CASE("fibra run: two runs cannot write into one directory at once") {
+  TempDir scratch("cli_lock");
+  fs::create_directories(scratch.path());
+  const std::string out = scratch / "out";
+  const pid_t first = startFibra({"run", sourcePath("samples/bundle_squeeze.json"), "--out", out,
+                                  "--threads", "1", "--quiet"},
+                                 scratch / "first.log");
+  bool running = false;
+  for (int waited = 0; waited < 60000 && !running; waited += 5) {
+    running = fs::exists(out + "/history.csv.part");
+    if (!running) ::usleep(5000);
+  }
+  const RunResult second =
+      runFibra({"run", sourcePath("samples/cantilever.json"), "--out", out, "--quiet"}, scratch);
+  const RunResult resume = runFibra({"run", "--resume", out, "--quiet"}, scratch);
+  ::kill(first, SIGKILL);
+  waitStatus(first);
+  REQUIRE(running);
+  for (const RunResult& r : {second, resume}) {
+    CAPTURE(r.output);
+    CHECK(r.status == 1);
+    CHECK(r.output.find("another fibra run is writing into '" + out + "'") != std::string::npos);
+  }
+  // The first run's files were left alone, and once it is gone the directory is free again.
+  CHECK(readFile(out + "/resume_scene.json") ==
+        readFile(sourcePath("samples/bundle_squeeze.json")));
+  CHECK(runFibra({"run", "--resume", out, "--threads", "1", "--quiet"}, scratch).status == 0);
+}
