@@ -14,8 +14,9 @@
 // Order of work: the scene is loaded, validated and the World built before anything is
 // created, so bad input leaves no trace on disk (exit 2). Then DIR is locked for the run's life
 // (a second run into it exits 1), fibra's own files from an earlier run in DIR are removed
-// (io/outputs.h: clearOutputs; other files stay) and DIR is filled by fibra::Outputs. Progress goes to stderr: a header, one line per converged increment (per
-// Newton iteration too with --verbose; none with --quiet), a summary (app/terminal.h).
+// (io/outputs.h: clearOutputs; other files stay) and DIR is filled by fibra::Outputs. Progress
+// goes to stderr: a header, one line per converged increment (per Newton iteration too with
+// --verbose; none with --quiet), a summary (app/terminal.h).
 //
 // Exit status: 0 solved; 1 an increment failed (after its cutbacks) or output could not be
 // written; 2 bad usage or a bad scene; 130 interrupted by SIGINT, 143 by SIGTERM. On failure and
