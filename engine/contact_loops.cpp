@@ -58,7 +58,7 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
 // The contact set the accepted state was solved with, against a detection from that state (the
 // stores are put back afterwards; the detection cache holds nothing results depend on): the true
 // overlap of the fibres and how far the set is from the one a new pass would use. A cancel
-// during it leaves the figures partial; the converged increment stands.
+// during it leaves the figures partial: the caller drops the attempt (acceptContactSet).
 void checkContactSet(WorldState& w, double t, ContactReport& report) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
@@ -110,7 +110,7 @@ bool inconsistent(const ContactReport& r) {
 }
 
 // Acceptance (fibre-fibre contact): the set is checked against a detection from the converged
-// state (checkContactSet); while it is inconsistent, up to kConsistencyPasses more passes solve
+// state (checkContactSet; a cancel during it cancels the attempt); while it is inconsistent, up to kConsistencyPasses more passes solve
 // with the new detection's elements; still inconsistent, the attempt fails (a cutback), never a
 // silent acceptance.
 constexpr int kConsistencyPasses = 2;
@@ -119,6 +119,9 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
                               ContactReport& report, NewtonResult nr) {
   for (int extra = 0;; ++extra) {
     checkContactSet(w, tTry, report);
+    // A check cut short by a cancel checked nothing: the attempt is not accepted unchecked
+    // (nor with partial figures in its report).
+    if (w.cancel()) return cancelled(nr);
     if (!inconsistent(report)) return nr;
     if (extra == kConsistencyPasses) {
       nr.outcome = NewtonOutcome::Failed;
