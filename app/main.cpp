@@ -29,6 +29,7 @@
 // SIGINT and SIGTERM set the program's one process-level flag; the World polls it through its
 // cancel callback between Newton iterations and returns the last converged state. A second
 // signal kills the program at once.
+#include "app/arguments.h"
 #include "app/pictures.h"
 #include "app/study.h"
 #include "app/terminal.h"
@@ -153,18 +154,6 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-int positiveInt(const std::string& text, const std::string& option) {
-  size_t used = 0;
-  int v = 0;
-  try {
-    v = std::stoi(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != text.size() || v < 1)
-    throw UsageError(option + ": expected a positive integer, got '" + text + "'");
-  return v;
-}
-
 VtuEncoding vtuFormat(const std::string& text) {
   if (text == "binary") return VtuEncoding::Binary;
   if (text == "ascii") return VtuEncoding::Ascii;
@@ -178,7 +167,7 @@ bool valueOption(Options& o, const std::string& a, const std::string& v) {
   else if (a == "--resume")
     o.out = v, o.resume = true;
   else if (a == "--threads")
-    o.threads = positiveInt(v, a);
+    o.threads = arguments::positiveInt(v, a);
   else if (a == "--trace")
     o.trace = v;
   else if (a == "--vtu-format")
@@ -507,7 +496,13 @@ int main(int argc, char** argv) {
       }
     if (command != "run")
       throw UsageError(command.empty() ? "missing command" : "unknown command '" + command + "'");
-    return run(parseRun(argc, argv));
+    Options options;
+    try {
+      options = parseRun(argc, argv);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(e.what());
+    }
+    return run(options);
   } catch (const UsageError& e) {
     std::fprintf(stderr, "fibra: %s\nusage: %s\n(fibra --help for more)\n", e.what(),
                  usageLine(command).c_str());

@@ -18,6 +18,8 @@
 // outputs are left out, so that outputs do not blur the solver's cost.
 #include "app/study.h"
 
+#include "app/arguments.h"
+
 #include "app/study_plot.h"
 #include "engine/world.h"
 #include "io/json_reader.h"
@@ -70,18 +72,6 @@ std::vector<std::string> splitCommas(const std::string& text, const std::string&
   return parts;
 }
 
-int positiveInt(const std::string& text, const std::string& option) {
-  size_t used = 0;
-  int v = 0;
-  try {
-    v = std::stoi(text, &used);
-  } catch (const std::exception&) {
-  }
-  if (used != text.size() || v < 1)
-    throw std::invalid_argument(option + ": expected a positive integer, got '" + text + "'");
-  return v;
-}
-
 Arguments parse(int argc, char** argv) {
   static const std::vector<std::string> known{"--vary", "--observe", "--out", "--reference",
                                               "--threads"};
@@ -109,7 +99,7 @@ Arguments parse(int argc, char** argv) {
   if (a.vary.empty()) throw std::invalid_argument("study: missing --vary FIELD=V1,V2,...");
   if (a.observe.empty()) throw std::invalid_argument("study: missing --observe COLUMN[,...]");
   if (a.out.empty()) throw std::invalid_argument("study: missing --out DIR");
-  if (values.count("--threads")) a.threads = positiveInt(values["--threads"], "--threads");
+  if (values.count("--threads")) a.threads = arguments::positiveInt(values["--threads"], "--threads");
   return a;
 }
 

@@ -58,6 +58,29 @@ inline SceneDef crossingBeams(double P, double pMax, int elements = 10) {
   return s;
 }
 
+// crossingBeams(0.01, 1e-4) with friction (fibre-fibre 0.2, g_T,max 5e-4 mm) and A resting on a
+// plane tool with friction 0.3: step 1 presses B in `pressIncrements`, then `slide` (its end
+// time set to 2) moves B's ends sideways by 0.3 mm.
+inline SceneDef slidingCrossing(int pressIncrements, StepDef slide) {
+  SceneDef s = crossingBeams(0.01, 1e-4);
+  s.contact.friction = 0.2;
+  s.contact.maxReversibleSlip = 5e-4;
+  ToolDef floor;
+  floor.name = "floor";
+  floor.point = Vec3(0, 0, -0.1);
+  floor.friction = 0.3;
+  s.tools.push_back(floor);
+  s.steps[0].increments = pressIncrements;
+  for (BcDef& b : s.bcs)
+    if (b.group == "B.start" || b.group == "B.end") {
+      b.displacement = Vec3(0.3, 0, 0);
+      b.displacementTable = {{0, 1, 2}, {0, 0, 1}};
+    }
+  slide.endTime = 2;
+  s.steps.push_back(slide);
+  return s;
+}
+
 // Two parallel beams along x, B on top of A; A rests on a frictionless plane; a uniform line
 // load w presses B onto A. Away from the ends the contact line force is w. A tiny stabilisation
 // spring holds the beams in the first iterations, before the contacts have stiffness.

@@ -16,30 +16,14 @@ using namespace fibra::test;
 
 namespace {
 
-// Crossing beams pressed together with friction, A resting on a plane tool with friction; step
-// 1 presses (2 increments) and converges; step 2 slides B's ends sideways by 0.3 mm in one
-// increment with one Newton iteration and no cutback allowed: it cannot converge.
+// The sliding crossing (tests/contact_scenes.h): step 1 presses (2 increments) and converges;
+// step 2 slides B's ends in one increment with one Newton iteration and no cutback allowed: it
+// cannot converge.
 SceneDef slidingCrossing() {
-  SceneDef s = crossingBeams(0.01, 1e-4);
-  s.contact.friction = 0.2;
-  s.contact.maxReversibleSlip = 5e-4;
-  ToolDef floor;
-  floor.name = "floor";
-  floor.point = Vec3(0, 0, -0.1);
-  floor.friction = 0.3;
-  s.tools.push_back(floor);
-  s.steps[0].increments = 2;
-  for (BcDef& b : s.bcs)
-    if (b.group == "B.start" || b.group == "B.end") {
-      b.displacement = Vec3(0.3, 0, 0);
-      b.displacementTable = {{0, 1, 2}, {0, 0, 1}};
-    }
   StepDef slide;
-  slide.endTime = 2;
   slide.maxIterations = 1;
   slide.maxCutbacks = 0;
-  s.steps.push_back(slide);
-  return s;
+  return fibra::test::slidingCrossing(2, slide);
 }
 
 // Solves step 1 and returns what it converged to.

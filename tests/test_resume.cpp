@@ -17,31 +17,23 @@ using namespace fibra::test;
 
 namespace {
 
-// Crossing beams pressed together with friction (fibre-fibre 0.2), A resting on a plane tool
-// with friction 0.3; step 2 slides B's ends sideways by 0.3 mm in 6 increments with an iteration
-// limit that forces cutbacks, so that the attempt size carried between increments matters.
+// The sliding crossing (tests/contact_scenes.h), pressed in 3 increments, slid in 6 with an
+// iteration limit that forces cutbacks, so that the attempt size carried between increments
+// matters.
 SceneDef slidingCrossing() {
-  SceneDef s = crossingBeams(0.01, 1e-4);
-  s.contact.friction = 0.2;
-  s.contact.maxReversibleSlip = 5e-4;
-  ToolDef floor;
-  floor.name = "floor";
-  floor.point = Vec3(0, 0, -0.1);
-  floor.friction = 0.3;
-  s.tools.push_back(floor);
-  s.steps[0].increments = 3;
-  for (BcDef& b : s.bcs)
-    if (b.group == "B.start" || b.group == "B.end") {
-      b.displacement = Vec3(0.3, 0, 0);
-      b.displacementTable = {{0, 1, 2}, {0, 0, 1}};
-    }
   StepDef slide;
-  slide.endTime = 2;
   slide.increments = 6;
   slide.maxIterations = 6;
   slide.maxCutbacks = 8;
-  s.steps.push_back(slide);
-  return s;
+  return fibra::test::slidingCrossing(3, slide);
+}
+
+// The checkpoint after w's next `increments` increments (each must converge).
+std::string checkpointAfter(World& w, int increments) {
+  for (int i = 0; i < increments; ++i) REQUIRE(w.step().status == StepStatus::Converged);
+  std::ostringstream out;
+  w.saveCheckpoint(out);
+  return out.str();
 }
 
 struct Run {
@@ -60,9 +52,7 @@ Run solve(World& w) {
     run.iterations.push_back(r.totalIterations);
     run.cutbacks += r.cutbacks;
     run.energy = r.energy;
-    std::ostringstream out;
-    w.saveCheckpoint(out);
-    run.checkpoints.push_back(out.str());
+    run.checkpoints.push_back(checkpointAfter(w, 0));
   }
   return run;
 }
@@ -111,11 +101,9 @@ TEST_CASE("a world restored from the checkpoint of any increment ends bitwise wh
 TEST_CASE("a resumed world is restored from a checkpoint at its own state: nothing changes") {
   const SceneDef scene = slidingCrossing();
   World w(scene);
-  for (int i = 0; i < 4; ++i) REQUIRE(w.step().status == StepStatus::Converged);
-  std::ostringstream out;
-  w.saveCheckpoint(out);
+  const std::string state = checkpointAfter(w, 4);
   const Observed before = observe(w);
-  restore(w, out.str());
+  restore(w, state);
   checkSame(observe(w), before);
   CHECK(w.currentStep() == 1);
 }
@@ -123,10 +111,7 @@ TEST_CASE("a resumed world is restored from a checkpoint at its own state: nothi
 TEST_CASE("a truncated, corrupt or foreign checkpoint is refused with its reason and the world is unchanged") {
   const SceneDef scene = slidingCrossing();
   World saved(scene);
-  for (int i = 0; i < 4; ++i) REQUIRE(saved.step().status == StepStatus::Converged);
-  std::ostringstream out;
-  saved.saveCheckpoint(out);
-  const std::string good = out.str();
+  const std::string good = checkpointAfter(saved, 4);
 
   World w(scene);
   REQUIRE(w.step().status == StepStatus::Converged);
@@ -182,13 +167,11 @@ TEST_CASE("a truncated, corrupt or foreign checkpoint is refused with its reason
   SceneDef damped = scene;
   damped.steps[0].damping = 1e-3;
   World dampedWorld(damped);
-  for (int i = 0; i < 4; ++i) REQUIRE(dampedWorld.step().status == StepStatus::Converged);
-  std::ostringstream dampedState;
-  dampedWorld.saveCheckpoint(dampedState);
+  const std::string dampedState = checkpointAfter(dampedWorld, 4);
   damped.steps[0].damping = 2e-3;
   damped.steps[1].damping = 1e-3;
   World moreDamped(damped);
-  CHECK(refusal(moreDamped, dampedState.str()).empty());
+  CHECK(refusal(moreDamped, dampedState).empty());
 
   checkSame(observe(w), before);
   // And the refused world still solves as if nothing had happened.
