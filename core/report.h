@@ -61,7 +61,9 @@ struct ContactReport {
   double maxOverlap = 0;       // true overlap w_I + w_J - centre distance at the closest
                                // sections (w: half-widths along the line of centres,
                                // systems/contact_queries.h), max over the pairs found, mm
-  double maxOverlapRatio = 0;  // the same / the fibre-fibre p_max
+  double maxOverlapRatio = 0;  // the largest overlap / its element's p_max (its pair's)
+  int overlapFibreI = -1, overlapFibreJ = -1;  // the fibres of that overlap (-1: none)
+  double overlapSI = 0, overlapSJ = 0;         // its reference arc lengths on them, mm
   int redetectZoneChanges = 0; // zones that appear, vanish or change their element count
   double redetectGapChange = 0;     // max |g_N new - g_N used| / p_max over paired elements
   double redetectParticleShift = 0; // max particle shift (arc length and section) / R, same

@@ -62,8 +62,11 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
 void checkContactSet(WorldState& w, double t, ContactReport& report) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
-  report.maxOverlap = trueOverlap(w.fibres, w.fibres.q, w.trial.elements);
-  report.maxOverlapRatio = report.maxOverlap / w.contact.pMax;
+  const Overlap o = trueOverlap(w.fibres, w.fibres.q, w.trial);
+  report.maxOverlap = o.depth;
+  report.maxOverlapRatio = o.ratio;
+  report.overlapFibreI = int(o.fibreI), report.overlapFibreJ = int(o.fibreJ);
+  report.overlapSI = o.sI, report.overlapSJ = o.sJ;
   compareContactSets(w.fibres, used, w.trial, report);
   w.trial = std::move(used);
 }
@@ -102,8 +105,16 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
   return nr;
 }
 
+// Where the deepest overlap is: "'a' at s = 1.2 mm and 'b' at s = 3.4 mm".
+std::string overlapPlace(const FibreStore& fs, const ContactReport& r) {
+  if (r.overlapFibreI < 0) return "nowhere";
+  return "'" + fs.name[r.overlapFibreI] + "' at s = " + number(r.overlapSI) + " mm and '" +
+         fs.name[r.overlapFibreJ] + "' at s = " + number(r.overlapSJ) + " mm";
+}
+
 // The accepted set misses the true contact when the fibres overlap by more than 1.5 x the
-// deepest penetration its elements report (and p_max): the elements' sections are no longer
+// deepest penetration its elements report (and p_max), both as multiples of each element's own
+// p_max (pairs of contact classes may have their own): the elements' sections are no longer
 // the closest ones (they drifted as the fibres slid or turned).
 bool inconsistent(const ContactReport& r) {
   return r.maxOverlapRatio > 1.5 * std::max(1.0, r.maxPenetrationRatio);
@@ -126,8 +137,11 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
     if (extra == kConsistencyPasses) {
       nr.outcome = NewtonOutcome::Failed;
       nr.message = "inconsistent contact set: the fibres overlap by " +
-                   number(report.maxOverlap) + " mm where the elements report at most " +
-                   number(report.maxPenetration) + " mm, after " +
+                   number(report.maxOverlapRatio) + " p_max of their pair (" +
+                   overlapPlace(w.fibres, report) + "; deepest overlap " +
+                   number(report.maxOverlap) + " mm) where the elements report at most " +
+                   number(report.maxPenetrationRatio) + " p_max (" +
+                   number(report.maxPenetration) + " mm), after " +
                    std::to_string(kConsistencyPasses) + " passes with a new detection";
       return nr;
     }

@@ -69,27 +69,36 @@ double faceDepth(const Section& S, double R, const Vec3& x) {
 
 }  // namespace
 
-double trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactElementStore& el) {
-  double overlap = 0;
+Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactState& detected) {
+  const ContactElementStore& el = detected.elements;
+  Overlap deepest;
   for (Index e = 0; e < el.size(); ++e) {
     const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
     const Section I = contactSection(fs, q, fI, el.sI[e]);
     const Section J = contactSection(fs, q, fJ, el.sJ[e]);
     const Vec3 oI = el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2, oJ = el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2;
     const double RI = fs.radius[fI], RJ = fs.radius[fJ];
+    double depth;
     if (el.fallback[e] & kEndFaceI) {
-      overlap = std::max(overlap, faceDepth(J, RJ, I.x0 + oI));
+      depth = faceDepth(J, RJ, I.x0 + oI);
     } else if (el.fallback[e] & kEndFaceJ) {
-      overlap = std::max(overlap, faceDepth(I, RI, J.x0 + oJ));
+      depth = faceDepth(I, RI, J.x0 + oJ);
     } else {
       const Vec3 d = I.x0 - J.x0;
       const double dist = d.norm();
       // coincident centres (a full overlap): the width across I's first director
       const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
-      overlap = std::max(overlap, halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist);
+      depth = halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist;
+    }
+    deepest.depth = std::max(deepest.depth, depth);
+    const double ratio = depth / detected.zones.pMax[el.zone[e]];
+    if (ratio > deepest.ratio) {
+      deepest.ratio = ratio;
+      deepest.fibreI = fI, deepest.fibreJ = fJ;
+      deepest.sI = el.sI[e], deepest.sJ = el.sJ[e];
     }
   }
-  return overlap;
+  return deepest;
 }
 
 namespace {

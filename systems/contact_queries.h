@@ -65,8 +65,17 @@ void fillContactReport(const ContactParams& params, const ContactState& state, C
 // coordinates, mm; G = [g1 g2]); mm.
 double halfWidth(const Section& S, double R, const Vec3& n);
 
-double trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
-                   const ContactElementStore& detected);
+// The true overlap of a detection: the deepest in mm, and the largest as a multiple of the
+// element's own p_max (its zone's: contact pairs may give classes different ones), with where
+// that one is.
+struct Overlap {
+  double depth = 0;                // largest overlap over the elements, mm; 0 when none
+  double ratio = 0;                // largest overlap / the element's zone p_max
+  Index fibreI = -1, fibreJ = -1;  // the fibres of the element of `ratio`, -1 when none
+  double sI = 0, sJ = 0;           // the reference arc lengths of its sections, mm
+};
+Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
+                    const ContactState& detected);
 
 // Fills r.redetectZoneChanges, redetectGapChange, redetectParticleShift.
 void compareContactSets(const FibreStore& fibres, const ContactState& used,

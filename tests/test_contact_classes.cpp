@@ -2,7 +2,9 @@
 // far apart, of four classes with their own friction and p_max; each pair presses with the same
 // load, then its upper beam is dragged across the lower one. Each pair's deepest penetration
 // sits at its own p_max, and the drag force on its upper beam is its own mu times the normal
-// force (both from the beams' holds, not from the law). The rules' errors name the field.
+// force (both from the beams' holds, not from the law); the true overlap the acceptance check
+// reports is each pair's own (from the centrelines) over its own p_max, and names the pair. The
+// rules' errors name the field.
 #include "contact_scenes.h"
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
@@ -98,6 +100,45 @@ TEST_CASE("each pair class has its own friction and p_max: penetration and slip 
     CHECK(normal > 0.4 * kLoad);  // about half the load: B's own supports carry the rest
     CHECK(std::abs(drag / (mu[k] * normal) - 1) < 0.02);
   }
+}
+
+TEST_CASE("the true overlap at acceptance is a multiple of each pair's own p_max, and names the pair") {
+  // The section's p_max is 1e-3 mm; pair 0's 1e-4, pair 1's 4e-4, but pair 1's penalty floor
+  // (400 N/mm) holds it far shallower: pair 0, near its own p_max, is the deepest overlap both
+  // in mm and in its own p_max (a tenth of the section's).
+  const double pMax[2] = {1e-4, 4e-4};
+  SceneDef scene = twoPairs(0, pMax[0], 0, pMax[1]);
+  scene.contact.pairs[1].penaltyMin = 400;
+  World w(scene);
+  StepReport r;
+  while (w.currentStep() == 0) {
+    r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+  }
+  // Independently, from the nodes at the crossing (both beams' midspan nodes, s = 2 mm, over
+  // each other): w_A + w_B - |x0A - x0B|, w = R |G^T n| the half-width of the deformed section
+  // along the line of centres n (the contact flattens the sections: 2R - d over-states the
+  // overlap by 4% here).
+  const FibreStore& fs = w.fibres();
+  const auto width = [&](Index node, const Vec3& n) {
+    return 0.1 * std::hypot(g1Of(fs.q, node).dot(n), g2Of(fs.q, node).dot(n));
+  };
+  double overlap[2];
+  for (int k = 0; k < 2; ++k) {
+    const Index a = fs.firstNode[2 * k] + 10, b = fs.firstNode[2 * k + 1] + 10;
+    const Vec3 d = x0Of(fs.q, a) - x0Of(fs.q, b);
+    const Vec3 n = d.normalized();
+    overlap[k] = width(a, n) + width(b, n) - d.norm();
+  }
+  MESSAGE("overlaps " << overlap[0] << ", " << overlap[1] << " mm; reported " << r.contact.maxOverlap
+                      << " mm, " << r.contact.maxOverlapRatio << " p_max");
+  REQUIRE(overlap[0] / pMax[0] > 0.5);
+  REQUIRE(overlap[0] / pMax[0] > 2 * overlap[1] / pMax[1]);
+  CHECK(r.contact.maxOverlap == doctest::Approx(std::max(overlap[0], overlap[1])).epsilon(0.01));
+  CHECK(r.contact.maxOverlapRatio == doctest::Approx(overlap[0] / pMax[0]).epsilon(0.01));
+  CHECK(r.contact.overlapFibreI + r.contact.overlapFibreJ == 1);  // fibres 0 and 1: pair 0
+  CHECK(r.contact.overlapSI == doctest::Approx(2).epsilon(0.01));
+  CHECK(r.contact.overlapSJ == doctest::Approx(2).epsilon(0.01));
 }
 
 TEST_CASE("penalty bounds per pair class: the section's floor holds the other pair shallow") {
