@@ -24,6 +24,7 @@
 #include "engine/world_state.h"
 
 #include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -111,8 +112,52 @@ Row cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& b) {
   return r;
 }
 
+// UMFPACK's LU of the full K with a given fill-reducing ordering (UMFPACK_ORDERING_*) and
+// strategy (UMFPACK_STRATEGY_*): "umfpack-amd", "umfpack-metis", "umfpack-best",
+// "umfpack-metis-unsym", "umfpack-amd-unsym".
+Row umfpackOrdering(const std::string& name, const LinearSystem& ls, const Eigen::VectorXd& b) {
+  Row r;
+  const SparseMatrix K = ls.symmetric ? SparseMatrix(ls.K.selfadjointView<Eigen::Upper>()) : ls.K;
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  const bool metis = name.find("metis") != std::string::npos;
+  const bool best = name.find("best") != std::string::npos;
+  lu.umfpackControl()(UMFPACK_ORDERING) = metis ? UMFPACK_ORDERING_METIS
+                                          : best ? UMFPACK_ORDERING_BEST : UMFPACK_ORDERING_AMD;
+  if (name.find("unsym") != std::string::npos)
+    lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_UNSYMMETRIC;
+  r.analyse = bench::seconds([&] { lu.analyzePattern(K); });
+  r.factorise = bench::seconds([&] { lu.factorize(K); });
+  if (lu.info() != Eigen::Success) r.shifted = -1;
+  Eigen::VectorXd x;
+  r.solve = bench::seconds([&] { x = lu.solve(b); });
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
+// CHOLMOD supernodal LL^T of the symmetric part with METIS nested dissection only
+// ("cholmod-metis"; CHOLMOD's default tries AMD and falls back to METIS on heavy fill).
+Row cholmodMetis(const LinearSystem& ls, const Eigen::VectorXd& b) {
+  Row r;
+  SparseMatrix S;
+  if (ls.symmetric) S = ls.K;
+  else S = (0.5 * (ls.K + SparseMatrix(ls.K.transpose()))).triangularView<Eigen::Upper>();
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  llt.cholmod().print = 0;
+  llt.cholmod().nmethods = 1;
+  llt.cholmod().method[0].ordering = CHOLMOD_METIS;
+  r.analyse = bench::seconds([&] { llt.analyzePattern(S); });
+  r.factorise = bench::seconds([&] { llt.factorize(S); });
+  if (llt.info() != Eigen::Success) r.shifted = -1;
+  Eigen::VectorXd x;
+  r.solve = bench::seconds([&] { x = llt.solve(b); });
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
 Row strategyRun(const std::string& name, const LinearSystem& ls, const Eigen::VectorXd& b, int threads) {
   if (name == "cholmod") return cholmodReference(ls, b);
+  if (name == "cholmod-metis") return cholmodMetis(ls, b);
+  if (name.rfind("umfpack-", 0) == 0) return umfpackOrdering(name, ls, b);
   LinearStrategy s;
   if (!parseStrategy(name, s)) std::exit(2);
   LinearSolver solver;

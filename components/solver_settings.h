@@ -7,6 +7,11 @@ namespace fibra {
 
 enum class LuSolver { Umfpack, EigenSparseLu };
 enum class LinearStrategy { Auto, Direct, Umfpack, Krylov, KrylovLu };
+// Fill-reducing ordering of the sparse factorisations. Auto: UMFPACK by METIS nested dissection
+// from kMetisFromEquations (systems/linear_solver.h) and by AMD/COLAMD below; CHOLMOD by its own
+// default (AMD, and METIS as well when AMD's fill is heavy, keeping the better). Amd, Metis:
+// that one ordering for both.
+enum class Ordering { Auto, Amd, Metis };
 
 struct KrylovSettings {
   double tolerance = 1e-8;   // |K x - b| / |b| asked of every solve (dimensionless; LU reaches

@@ -257,6 +257,7 @@ struct StabilisationDef {
 // Krylov settings. WorldDef::linearStrategy, when set, overrides `strategy`.
 struct SolverDef {
   LinearStrategy strategy = LinearStrategy::Auto;  // auto: by size (docs/RESULTS.md)
+  Ordering ordering = Ordering::Auto;               // auto: by size (docs/RESULTS.md)
   KrylovSettings krylov;
 };
 

@@ -219,6 +219,7 @@ void buildWorld(WorldState& w) {
   w.solver.setLuSolver(w.def.luSolver);
   w.solver.setStrategy(w.def.linearStrategy.value_or(w.scene.solver.strategy));
   w.solver.setKrylov(w.scene.solver.krylov);
+  w.solver.setOrdering(w.scene.solver.ordering);
   w.solver.setTrace(w.def.trace);
   if (w.def.arena) {
     w.arena = w.def.arena;

@@ -213,7 +213,7 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
 }
 
 SolverDef readSolver(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"strategy", "krylov_tolerance", "krylov_restart",
+  const Fields f(j, path, {"strategy", "ordering", "krylov_tolerance", "krylov_restart",
                            "krylov_max_iterations", "refactor_above"});
   SolverDef s;
   s.strategy = f.choice("strategy",
@@ -221,6 +221,9 @@ SolverDef readSolver(const Json& j, const std::string& path) {
                          {"umfpack", LinearStrategy::Umfpack}, {"krylov", LinearStrategy::Krylov},
                          {"krylov-lu", LinearStrategy::KrylovLu}},
                         s.strategy);
+  s.ordering = f.choice("ordering",
+                        {{"auto", Ordering::Auto}, {"amd", Ordering::Amd}, {"metis", Ordering::Metis}},
+                        s.ordering);
   s.krylov.tolerance = f.number("krylov_tolerance", s.krylov.tolerance);
   s.krylov.restart = f.integer("krylov_restart", s.krylov.restart);
   s.krylov.maxIterations = f.integer("krylov_max_iterations", s.krylov.maxIterations);

@@ -57,6 +57,17 @@ std::vector<Index> diagonalPositions(const SparseMatrix& S) {
   return at;
 }
 
+// CHOLMOD's orderings: its default (nmethods 0: AMD, and METIS too when AMD's fill is heavy)
+// for Auto, else that one method.
+void orderCholmod(cholmod_common& c, Ordering o) {
+  if (o == Ordering::Auto) {
+    c.nmethods = 0;
+    return;
+  }
+  c.nmethods = 1;
+  c.method[0].ordering = o == Ordering::Metis ? CHOLMOD_METIS : CHOLMOD_AMD;
+}
+
 }  // namespace
 
 const char* strategyName(LinearStrategy s) {
@@ -90,6 +101,7 @@ struct LinearSolver::Impl {
   KrylovSettings krylov;
   LuSolver luKind = LuSolver::EigenSparseLu;
   LinearStrategy strategy = LinearStrategy::Auto;
+  Ordering ordering = Ordering::Auto;
   int blasThreads = 0;
   Trace* trace = nullptr;
   Index lltRevision = -1, ldltRevision = -1, luRevision = -1, umfRevision = -1;
@@ -107,6 +119,7 @@ struct LinearSolver::Impl {
   template <class Solver>
   bool run(Solver& s, Index& revision, const SparseMatrix& K, Index current) {
     if (revision != current) {
+      order(s, K.cols());
       const auto t0 = std::chrono::steady_clock::now();
       s.analyzePattern(K);
       stats.analyse += seconds(t0);
@@ -121,6 +134,15 @@ struct LinearSolver::Impl {
     ++stats.factorisations;
     return s.info() == Eigen::Success;
   }
+
+  // The fill-reducing ordering of the next analysis of s, for n equations.
+  void order(Eigen::UmfPackLU<SparseMatrix>& s, Index n) const {
+    const bool metis = ordering == Ordering::Metis || (ordering == Ordering::Auto && n >= kMetisFromEquations);
+    s.umfpackControl()(UMFPACK_ORDERING) = metis ? UMFPACK_ORDERING_METIS : UMFPACK_ORDERING_AMD;
+  }
+  template <class Cholmod>
+  void order(Cholmod& s, Index) const { orderCholmod(s.cholmod(), ordering); }
+  void order(Eigen::SparseLU<SparseMatrix>&, Index) const {}  // COLAMD, its own
 
   bool direct(const LinearSystem& ls, std::string& message);
   bool umfpackLu(const LinearSystem& ls, std::string& message);
@@ -184,6 +206,7 @@ bool LinearSolver::Impl::factorisePreconditioner(const LinearSystem& ls, std::st
   if (pre.revision != ls.revision) {
     pre.diagonalAt = diagonalPositions(pre.S);
     const auto t0 = std::chrono::steady_clock::now();
+    orderCholmod(pre.llt.cholmod(), ordering);
     pre.llt.analyzePattern(pre.S);
     stats.analyse += seconds(t0);
     ++stats.analyses;
@@ -288,6 +311,11 @@ void LinearSolver::setLuSolver(LuSolver lu) {
 
 void LinearSolver::setStrategy(LinearStrategy s) { impl_->strategy = s; }
 void LinearSolver::setKrylov(const KrylovSettings& k) { impl_->krylov = k; }
+void LinearSolver::setOrdering(Ordering o) {
+  Impl& m = *impl_;
+  if (m.ordering != o) m.lltRevision = m.ldltRevision = m.luRevision = m.umfRevision = m.pre.revision = -1;
+  m.ordering = o;
+}
 void LinearSolver::setBlasThreads(int threads) { impl_->blasThreads = threads; }
 void LinearSolver::setTrace(Trace* trace) { impl_->trace = trace; }
 LinearStrategy LinearSolver::strategy() const { return impl_->strategy; }

@@ -20,6 +20,10 @@
 // - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
 //   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays);
 //   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
+// Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
+// METIS nested dissection from kMetisFromEquations equations and by AMD below, and leaves
+// CHOLMOD its default; amd or metis impose that one on both (measured: docs/RESULTS.md
+// "Orderings").
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
 // count is a process-wide setting: with setBlasThreads(n), every factorisation and solve first
 // sets it to n (the world passes its own thread count); 0 leaves it alone.
@@ -56,6 +60,10 @@ struct LinearSolveStats {
 // SparseLU and UMFPACK factorise a frictional bundle tangent in the same time, at 16.8k UMFPACK
 // is 7x faster; frictionless tangents that are not positive definite favour UMFPACK earlier).
 inline constexpr Index kUmfpackFromEquations = 7000;
+// Auto ordering's rule: UMFPACK by METIS from this many equations (measured, docs/RESULTS.md
+// "Orderings": on frictional yarn tangents METIS factorises 1.25x faster than AMD at 16.8k
+// equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
+inline constexpr Index kMetisFromEquations = 12000;
 
 // The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov").
 const char* strategyName(LinearStrategy s);
@@ -81,6 +89,7 @@ class LinearSolver {
   void setLuSolver(LuSolver lu);  // Direct, non-symmetric K; default EigenSparseLu
   void setStrategy(LinearStrategy s);  // default Auto
   void setKrylov(const KrylovSettings& k);
+  void setOrdering(Ordering o);      // default Auto; takes effect at the next analysis
   void setBlasThreads(int threads);  // > 0: OpenBLAS threads set before each factorisation
   void setTrace(Trace* trace);       // spans recorded when set
   LinearStrategy strategy() const;   // as set (Auto stays Auto)

@@ -4,7 +4,8 @@
 // pattern, refactorises when asked by its iteration count, shifts a symmetric part that is not
 // positive definite and still solves the true (indefinite) K; a squeezed 7-fibre bundle reaches
 // the same final state with every strategy, deterministically for a thread count; the scene's
-// `solver` section is read and checked with field-named errors.
+// `solver` section is read and checked with field-named errors. Every strategy is run with
+// each fill-reducing ordering (auto, AMD, METIS).
 #include "bench/contact_scenes.h"
 #include "engine/world_state.h"
 #include "io/scene_loader.h"
@@ -61,7 +62,7 @@ double solveWith(LinearStrategy s, const LinearSystem& ls, const Eigen::VectorXd
 
 }  // namespace
 
-TEST_CASE("every linear strategy solves a frictional and a frictionless contact tangent") {
+TEST_CASE("every linear strategy solves a frictional and a frictionless contact tangent, with every ordering") {
   // Frictionless with fixed normals: symmetric; with linearised normals, or friction: not.
   using enum NormalUpdate;
   for (const auto& [mu, update] :
@@ -70,15 +71,18 @@ TEST_CASE("every linear strategy solves a frictional and a frictionless contact 
     const LinearSystem& ls = w->system;
     CHECK(ls.symmetric == (update == Loop));
     const Eigen::VectorXd b = randomVector(ls.freeCount, 7);
-    for (LinearStrategy s : kStrategies) {
-      CAPTURE(mu);
-      CAPTURE(strategyName(s));
-      LinearSolver solver;
-      const double res = solveWith(s, ls, b, solver);
-      // Krylov: its own tolerance; the direct factorisations: their round-off, well below it.
-      CHECK(res <= KrylovSettings{}.tolerance);
-      if (s == LinearStrategy::Krylov) CHECK(solver.stats().krylovIterations > 0);
-    }
+    for (LinearStrategy s : kStrategies)
+      for (Ordering o : {Ordering::Auto, Ordering::Amd, Ordering::Metis}) {
+        CAPTURE(mu);
+        CAPTURE(strategyName(s));
+        CAPTURE(int(o));
+        LinearSolver solver;
+        solver.setOrdering(o);
+        const double res = solveWith(s, ls, b, solver);
+        // Krylov: its own tolerance; the direct factorisations: their round-off, well below it.
+        CHECK(res <= KrylovSettings{}.tolerance);
+        if (s == LinearStrategy::Krylov) CHECK(solver.stats().krylovIterations > 0);
+      }
   }
 }
 
@@ -201,20 +205,25 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
     return text;
   };
   const SceneDef s = loadSceneFromString(
-      scene(R"({"strategy": "krylov", "krylov_tolerance": 1e-9, "krylov_restart": 30,
-                "krylov_max_iterations": 100, "refactor_above": 25})"), "s.json");
+      scene(R"({"strategy": "krylov", "ordering": "metis", "krylov_tolerance": 1e-9,
+                "krylov_restart": 30, "krylov_max_iterations": 100, "refactor_above": 25})"),
+      "s.json");
   CHECK(s.solver.strategy == LinearStrategy::Krylov);
+  CHECK(s.solver.ordering == Ordering::Metis);
   CHECK(s.solver.krylov.tolerance == 1e-9);
   CHECK(s.solver.krylov.restart == 30);
   CHECK(s.solver.krylov.maxIterations == 100);
   CHECK(s.solver.krylov.refactorAbove == 25);
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.strategy == LinearStrategy::Auto);
+  CHECK(loadSceneFromString(scene("{}"), "s.json").solver.ordering == Ordering::Auto);
   auto error = [&](const std::string& solver) {
     return test::errorOf([&] { loadSceneFromString(scene(solver), "s.json"); });
   };
   CHECK(error(R"({"strategy": "cg"})") ==
         "s.json: solver.strategy: unknown value \"cg\" (expected one of: auto, direct, umfpack, "
         "krylov, krylov-lu)");
+  CHECK(error(R"({"ordering": "colamd"})") ==
+        "s.json: solver.ordering: unknown value \"colamd\" (expected one of: auto, amd, metis)");
   CHECK(error(R"({"krylov_tolerance": 0})") == "s.json: solver.krylov_tolerance: must be in (0, 1), got 0");
   CHECK(error(R"({"krylov_restart": 0})") == "s.json: solver.krylov_restart: must be >= 1, got 0");
   CHECK(error(R"({"refactor_above": 0})") == "s.json: solver.refactor_above: must be >= 1, got 0");
