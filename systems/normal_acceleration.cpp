@@ -23,6 +23,8 @@ constexpr double kMaxMixTurn = 0.5;
 // penalty updates in a squeezed 7-fibre bundle give up to 10-100 and are left to the plain
 // iteration, which converges there: mixing them cost 5-14% more iterations).
 constexpr double kGrowth = 100;
+// Growth from a turn below this (rad) is not counted: round-off growing into a first real update.
+constexpr double kTurnFloor = 1e-9;
 // Once the map is unstable, the largest turn of the part of a step the secant cannot explain, rad.
 constexpr double kProbeTurn = 1e-5;
 
@@ -95,7 +97,7 @@ bool NormalMixer::record(const ContactElementStore& el) {
   if (!on_ || which_.empty()) return false;
   const Eigen::VectorXd plain = stacked(el);
   const double turn = (plain - used_).lpNorm<Eigen::Infinity>();
-  unstable_ = unstable_ || (lastTurn_ > 0 && turn > kGrowth * lastTurn_);
+  unstable_ = unstable_ || (lastTurn_ > kTurnFloor && turn > kGrowth * lastTurn_);
   lastTurn_ = turn;
   const AndersonMixer::Split s = mixer_.split(used_, plain);
   if (mixer_.used() == 0 || !unstable_) return false;

@@ -15,7 +15,8 @@
 // next passes while the contact set is the same elements (same count and fibre pairs, sections
 // within `reach` mm of the previous set's: 1e-2 R_min; fibres sliding along each other start it
 // again). The mixed iterate replaces an update only once the map has shown itself unstable: an
-// update turned the normals more than kGrowth = 100 times further than the one before. Then the
+// update turned the normals more than kGrowth = 100 times further than the one before (growth
+// from a turn below 1e-9 rad, round-off, is not counted). Then the
 // part of the step that the secant cannot explain is limited to kProbeTurn = 1e-5 rad per normal:
 //   N_{k+1} = xBar + beta fBar,  beta = min(1, 1e-5 / max |fBar|)  (systems/anderson_mixing.h),
 // since a plain step from a residual r lands ~ g r away, out of the secant's linear range (from
