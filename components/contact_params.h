@@ -97,6 +97,8 @@ struct ContactParams {
   int maxDetectionLoops = 3;       // n_A
   int maxNormalLoops = 3;          // n_B
   double normalTolerance = 1e-3;   // rad: loop B stops when no normal turns more
+  int normalMemory = 3;            // Anderson memory of loop B on the normals (0: plain update;
+                                   // systems/normal_acceleration.h)
   double particleTolerance = 1e-3; // x R_min: loop A stops when no centreline moved more
   double penaltyTolerance = 0.1;   // loop A stops when no penalty changes by more
   double stepPenetration = 10;     // x p_max: deepest closing of an element in one Newton step

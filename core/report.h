@@ -40,6 +40,7 @@ struct StepTimings {  // seconds of wall time in this increment, all attempts to
 struct ContactReport {
   int detectionLoops = 0;      // loop A iterations of the accepted attempt
   int normalLoops = 0;         // loop B iterations, summed over loop A
+  int normalMixes = 0;         // of them, normal updates replaced by the Anderson-mixed normals
   int restarts = 0;            // loop A passes restarted from the increment's start because the
                                // previous pass penetrated deeply where it had no element
   int zones = 0;               // proximity zones (fibre-fibre)

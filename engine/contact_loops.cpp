@@ -5,6 +5,7 @@
 #include "systems/boundary.h"
 #include "systems/contact_queries.h"
 #include "systems/friction_status.h"
+#include "systems/normal_acceleration.h"
 
 #include <algorithm>
 #include <cmath>
@@ -84,23 +85,35 @@ Index settleFriction(WorldState& w, ContactReport& report) {
          settleFrictionStatus(w.trial.toolFrictionStatus, tol);
 }
 
+// Sections of two detections within this x R_min: the same elements for loop B's accelerated
+// normals (systems/normal_acceleration.h), whose history then goes on.
+constexpr double kSameSections = 1e-2;
+
 // Loop B: Newton with the elements fixed, then the normals at the new state, until they stop
-// turning or n_B passes. Linearised fibre normals (contact `normal_update` "newton") already are
+// turning or n_B passes. Every update is recorded by the mixer (contact `normal_acceleration`);
+// when it has a secant step (the map showed itself unstable), that replaces the update. Linearised fibre normals (contact `normal_update` "newton") already are
 // those of the converged state: their update only records them (for the reports and the step
 // limit), and only fixed normals (end faces, tools) can ask for another pass.
 NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settings,
                         const NewtonCallbacks& callbacks, StepTimings& timings,
-                        ContactReport& report, NewtonResult nr) {
+                        ContactReport& report, NormalMixer& mixer, NewtonResult nr) {
   const ContactParams& s = w.contact;
+  mixer.follow(s, w.trial.elements, kSameSections * minRadius(w.fibres));
   for (int b = 1; b <= s.maxNormalLoops; ++b) {
     ++report.normalLoops;
+    mixer.solving(w.trial.elements);
     nr = newton(w, settings, callbacks, timings, nr);
     if (nr.outcome != NewtonOutcome::Converged) break;
     const Index switched = settleFriction(w, report);
     if (b == s.maxNormalLoops) break;
     runStage(w, w.pipeline.normals, tTry);
+    const bool mixed = mixer.record(w.trial.elements);
     if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance && switched == 0)
       break;
+    if (mixed) {
+      mixer.apply(w.fibres, w.fibres.q, w.trial.elements);
+      ++report.normalMixes;
+    }
   }
   return nr;
 }
@@ -127,7 +140,7 @@ bool inconsistent(const ContactReport& r) {
 constexpr int kConsistencyPasses = 2;
 NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
                               const NewtonCallbacks& callbacks, StepTimings& timings,
-                              ContactReport& report, NewtonResult nr) {
+                              ContactReport& report, NormalMixer& mixer, NewtonResult nr) {
   for (int extra = 0;; ++extra) {
     checkContactSet(w, tTry, report);
     // A check cut short by a cancel checked nothing: the attempt is not accepted unchecked
@@ -147,7 +160,7 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
     }
     if (!detect(w, tTry, report)) return cancelled(nr);
     ++report.consistencyPasses;
-    nr = normalLoop(w, tTry, settings, callbacks, timings, report, nr);
+    nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);
     if (nr.outcome != NewtonOutcome::Converged) return nr;
     fillContactReport(w.contact, w.trial, report);
   }
@@ -162,6 +175,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
   NewtonCallbacks callbacks = cb;
   callbacks.stepLimit = [&w](const Eigen::VectorXd& dq) { return stepLimit(w.contact, w.trial, dq); };
   NewtonResult nr;
+  NormalMixer mixer(s.normalMemory);
   report = ContactReport{};
   const Eigen::VectorXd qEntry = w.fibres.q;
   Eigen::VectorXd qDetected = w.fibres.q;
@@ -169,7 +183,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
   applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
   for (int a = 1; a <= s.maxDetectionLoops; ++a) {
     report.detectionLoops = a;
-    nr = normalLoop(w, tTry, settings, callbacks, timings, report, nr);
+    nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);
     if (nr.outcome != NewtonOutcome::Converged) return nr;
     // The penalties this pass was solved with; the adapted ones serve the next pass only.
     const std::vector<double> zonePenalty = w.trial.zones.penalty;
@@ -200,7 +214,7 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
       ++report.restarts;
     }
   }
-  return s.fibres ? acceptContactSet(w, tTry, settings, callbacks, timings, report, nr) : nr;
+  return s.fibres ? acceptContactSet(w, tTry, settings, callbacks, timings, report, mixer, nr) : nr;
 }
 
 }  // namespace fibra

@@ -9,6 +9,8 @@
 //       is held in it for the pass)                                           [stage assemble]
 //       held branches checked against the slip circle (systems/friction_status.h)
 //       normals at the new state                                             [stage normals]
+//       once the updates show an unstable map, the Anderson-mixed normals instead
+//       (contact normal_acceleration, systems/normal_acceleration.h)
 //     adapt the penalty of every zone towards p_max (eq. 13), record the
 //     friction history                                                        [stage adapt]
 //

@@ -84,6 +84,10 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   if (!(def.frictionHoldTolerance > 0 && def.frictionHoldTolerance <= 1))
     throw SceneError("contact.friction_hold_tolerance: must be in (0, 1], got " +
                      number(def.frictionHoldTolerance));
+  if (def.normalAcceleration < 0 || def.normalAcceleration > kMaxNormalAcceleration)
+    throw SceneError("contact.normal_acceleration: must be in [0, " +
+                     std::to_string(kMaxNormalAcceleration) + "], got " +
+                     std::to_string(def.normalAcceleration));
   p.frictionFlips = def.frictionHoldAfter;
   p.frictionTolerance = def.frictionHoldTolerance;
   p.newtonNormals = def.normalUpdate == NormalUpdate::Newton;
@@ -94,6 +98,7 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.penaltyMax = def.penaltyMax;
   p.maxDetectionLoops = def.maxDetectionLoops;
   p.maxNormalLoops = def.maxNormalLoops;
+  p.normalMemory = def.normalAcceleration;
   p.pairs = resolveContactClasses(scene, {p.mu, p.pMax, p.penaltyMin, p.penaltyMax});
   p.mu = *std::max_element(p.pairs.mu.begin(), p.pairs.mu.end());
   return p;

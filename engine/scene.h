@@ -177,6 +177,8 @@ enum class ElementPlacement { Weighted, Paper };
 // How fibre-fibre normals follow the state: recomputed at every Newton assembly with their
 // derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop).
 enum class NormalUpdate { Newton, Loop };
+// The largest Anderson memory of loop B (contact `normal_acceleration`).
+inline constexpr int kMaxNormalAcceleration = 10;
 
 // Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
 // value): friction, p_max and the penalty bounds. A rule names two contact classes (the same
@@ -222,6 +224,8 @@ struct ContactDef {
   double frictionHoldTolerance = 0.01;  // a held status is consistent within this relative
                                         // distance of the slip circle (friction force error)
   NormalUpdate normalUpdate = NormalUpdate::Loop;
+  int normalAcceleration = 3;         // Anderson memory of loop B on the normals, passes (0: the
+                                      // plain update; <= 10)
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

@@ -93,7 +93,7 @@ HistoryColumns contactColumns(const World& world) {
            "contact.candidate_pairs", "contact.loop_a_capped", "contact.max_overlap",
            "contact.redetect_zone_changes", "contact.redetect_gap_change",
            "contact.redetect_particle_shift", "contact.consistency_passes",
-           "contact.friction_held", "contact.friction_excess"},
+           "contact.friction_held", "contact.friction_excess", "contact.normal_mixes"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             const ContactReport& c = r.contact;
             row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
@@ -105,7 +105,7 @@ HistoryColumns contactColumns(const World& world) {
                                    c.maxOverlap, double(c.redetectZoneChanges),
                                    c.redetectGapChange, c.redetectParticleShift,
                                    double(c.consistencyPasses), double(c.frictionHeld),
-                                   c.frictionExcess});
+                                   c.frictionExcess, double(c.normalMixes)});
           }};
 }
 

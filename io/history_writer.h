@@ -55,7 +55,9 @@ HistoryColumns toolColumns(const World& world);
 // .max_penetration (mm), .max_penetration_ratio (of p_max), .detection_loops, .normal_loops,
 // .restarts (loops A and B of the increment), .stabilisation (|stabilisation forces| / F_ref),
 // .detections, .broadphase_rebuilds (detection passes of the increment's last attempt, and those
-// that rebuilt the broadphase's candidate set), .candidate_pairs (of the last detection).
+// that rebuilt the broadphase's candidate set), .candidate_pairs (of the last detection), ...,
+// .normal_mixes (normal updates of loop B replaced by the Anderson-mixed normals, summed over
+// loop A; contact `normal_acceleration`).
 HistoryColumns contactColumns(const World& world);
 // When some step has damping: viscous_force, |the continuation's force on the free DOFs| / F_ref
 // at the end of the increment (how far the state is from static equilibrium; 0 in steps

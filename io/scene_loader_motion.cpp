@@ -161,7 +161,8 @@ ContactDef readContact(const Json& j, const std::string& path) {
        "theta_parallel_deg", "self_contact", "self_contact_separation", "skin", "max_penetration",
        "regularisation", "initial_penalty", "penalty_change", "penalty_min", "penalty_max", "friction", "max_reversible_slip",
        "friction_tangent", "max_detection_loops", "max_normal_loops", "element_placement",
-       "friction_hold_after", "friction_hold_tolerance", "normal_update", "pairs"});
+       "friction_hold_after", "friction_hold_tolerance", "normal_update", "normal_acceleration",
+       "pairs"});
   constexpr double kRad = std::numbers::pi / 180;
   ContactDef c;
   c.enabled = f.boolean("enabled", true);  // a contact section means contact unless it says not
@@ -195,6 +196,7 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.normalUpdate = f.choice("normal_update",
                             {{"newton", NormalUpdate::Newton}, {"loop", NormalUpdate::Loop}},
                             c.normalUpdate);
+  c.normalAcceleration = f.integer("normal_acceleration", c.normalAcceleration);
   if (f.has("pairs"))
     forEachItem(f.at("pairs"), f.path("pairs"), [&](const Json& p, const std::string& at) {
       c.pairs.push_back(readContactPair(p, at));

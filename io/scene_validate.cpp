@@ -464,6 +464,9 @@ void validateContact(const ContactDef& c) {
     fail("contact.friction_hold_after", "must be in [0, 255], got " + std::to_string(c.frictionHoldAfter));
   if (!(c.frictionHoldTolerance > 0 && c.frictionHoldTolerance <= 1))
     fail("contact.friction_hold_tolerance", "must be in (0, 1], got " + num(c.frictionHoldTolerance));
+  if (c.normalAcceleration < 0 || c.normalAcceleration > kMaxNormalAcceleration)
+    fail("contact.normal_acceleration", "must be in [0, " + std::to_string(kMaxNormalAcceleration) +
+                                            "], got " + std::to_string(c.normalAcceleration));
 }
 
 void validateTools(const SceneDef& s) {

@@ -62,7 +62,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
        {"  contact: fibre-fibre, p_max 0.0005 mm, mu 0, theta_cross 20 deg, ",
         "  contact law: penalty 1 .. 10000 x E R, initial penalty E R, change <= x10, p_reg 0.5 "
         "p_max, g_T,max 0.0005 mm, friction tangent consistent, element placement weighted, normals "
-        "updated by loop B, "
+        "updated by loop B (Anderson memory 3 when unstable), "
         "stick/slip held after 2 changes (tolerance 0.01)\n",
         "  contact classes: warp (3 fibres), weft (3 fibres)\n",
         "  contact pairs (other pairs: the section's mu, p_max and penalty above):\n"
@@ -86,7 +86,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   REQUIRE(c.status == 0);
   CHECK(c.output.find("initial penalty 100 N/mm, ") != std::string::npos);
   CHECK(c.output.find("friction tangent symmetrised, element placement paper, normals updated by "
-                      "loop B, stick/slip held "
+                      "loop B (Anderson memory 3 when unstable), stick/slip held "
                       "after 2 changes (tolerance 0.01)\n") !=
         std::string::npos);
   CHECK(c.output.find("  contact classes: warp (3 fibres), weft (2 fibres), (default) (1 "

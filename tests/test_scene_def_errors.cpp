@@ -34,6 +34,10 @@ TEST_CASE("contact parameters set in code are reported by their scene names") {
         "contact.friction_hold_after: must be in [0, 255], got 256");
   CHECK(errorWith([](ContactDef& c) { c.frictionHoldTolerance = 0; }) ==
         "contact.friction_hold_tolerance: must be in (0, 1], got 0");
+  CHECK(errorWith([](ContactDef& c) { c.normalAcceleration = -1; }) ==
+        "contact.normal_acceleration: must be in [0, 10], got -1");
+  CHECK(errorWith([](ContactDef& c) { c.normalAcceleration = 11; }) ==
+        "contact.normal_acceleration: must be in [0, 10], got 11");
 }
 
 TEST_CASE("a number beyond a double's range is a scene error naming its field") {

@@ -1,0 +1,93 @@
+// Loop B accelerated (contact `normal_acceleration`, systems/normal_acceleration.h): a fibre
+// lying on a parallel fibre under a heavy line load is laterally unstable, and loop B's plain
+// fixed point on the normals diverges in the lateral mode; the Anderson-mixed normals converge
+// to the straight (symmetric) equilibrium with fixed normals in Newton (the default "loop").
+#include "engine/world.h"
+#include "io/scene_loader.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+using namespace fibra;
+
+namespace {
+
+// line_contact_heavy reduced: a 6 mm frictionless fibre U (R = 0.1 mm, 6 quadratic elements) on a
+// clamped parallel fibre D under q = 1 N/mm, p_max = 5e-4 mm; U is held laterally (y) at both
+// ends and axially (x) at its start. The lateral gain of plain loop B is ~ q / (2 R K) with K
+// U's lateral bending stiffness EI (pi / L)^4 ~ 0.024 N/mm^2 (E 4000 MPa): ~ 200 at full load.
+std::string heavyScene(const std::string& contactExtra) {
+  return R"({
+    "units": "mm-N-MPa",
+    "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+    "fibres": [
+      {"name": "U", "material": "m", "radius": 0.1, "elements": 6, "order": 2,
+       "geometry": {"type": "line", "points": [[-3, 0, 0.2], [3, 0, 0.2]], "director": [0, 0, 1]}},
+      {"name": "D", "material": "m", "radius": 0.1, "elements": 6, "order": 2,
+       "geometry": {"type": "line", "points": [[-3, 0, 0], [3, 0, 0]], "director": [0, 0, 1]}}],
+    "boundary_conditions": [
+      {"type": "fix", "group": "U.start", "dofs": ["x", "y", "g1y"]},
+      {"type": "fix", "group": "U.end", "dofs": ["y"]},
+      {"type": "clamp", "group": "D.all"}],
+    "loads": [{"type": "line_force", "group": "U.all", "vector": [0, 0, -1.0]}],
+    "contact": {"max_penetration": 0.0005)" +
+         contactExtra + R"(},
+    "stabilisation": {"stiffness": 1e-05, "fibres": ["U"]},
+    "steps": [{"end_time": 1, "increments": 5}]})";
+}
+
+// Largest |y| of U's centreline nodes, mm.
+double lateral(const World& w) {
+  const FibreStore& fs = w.fibres();
+  double y = 0;
+  for (Index n = fs.firstNode[0]; n < fs.firstNode[0] + fs.nodeCount[0]; ++n)
+    y = std::max(y, std::abs(x0Of(fs.q, n).y()));
+  return y;
+}
+
+}  // namespace
+
+TEST_CASE("the Anderson-mixed normals hold a heavy parallel line contact straight") {
+  const double q = 1.0, L = 6.0;  // N/mm, mm
+  World w(loadSceneFromString(heavyScene(""), "heavy.json"));
+  REQUIRE(w.scene().contact.normalAcceleration > 0);  // on by default
+  double axial = 0;
+  int mixes = 0;
+  while (!w.finished()) {
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    axial = std::max(axial, std::abs(w.reaction(0).force.x()));
+    mixes += r.contact.normalMixes;
+  }
+  CHECK(w.time() == doctest::Approx(1));
+  CHECK(mixes > 0);
+  CHECK(lateral(w) <= 1e-5);  // the straight equilibrium (1e-4 R), not rolled off
+  CHECK(axial <= 1e-3 * q * L);  // frictionless: no axial reaction
+  // The load reaches D as q L whatever the elements say: D's support reaction (independent of the
+  // contact elements), then the elements' own line force in the middle 2 mm.
+  CHECK(w.reaction(2).force.z() == doctest::Approx(q * L).epsilon(1e-6));
+  const ContactElementStore& el = w.contact().elements;
+  const ContactForceStore& f = w.contact().forces;
+  double total = 0;
+  int inner = 0;
+  for (Index e = 0; e < el.size(); ++e) {
+    total += f.normalForce[e];
+    const double s = el.fibreI[e] == 0 ? el.sI[e] : el.sJ[e];  // on U, from its start, mm
+    if (s < 2 || s > 4) continue;
+    CAPTURE(s);
+    CHECK(f.normalForce[e] / el.length[e] == doctest::Approx(q).epsilon(0.02));
+    ++inner;
+  }
+  CHECK(inner >= 4);
+  CHECK(total == doctest::Approx(w.reaction(2).force.z()).epsilon(1e-3));
+}
+
+TEST_CASE("without the acceleration loop B's fixed point loses the heavy line contact") {
+  World w(loadSceneFromString(heavyScene(R"(, "normal_acceleration": 0)"), "heavy.json"));
+  REQUIRE(w.scene().contact.normalAcceleration == 0);
+  bool failed = false;
+  while (!w.finished() && !failed) failed = w.step().status != StepStatus::Converged;
+  CHECK(failed);
+}
