@@ -6,6 +6,8 @@
 //   build/bench_linear_solves --case yarn61|yarn250|fabric480|bundle7|bundle19|bundle37
 //       [--friction on|off]
 //       [--strategy cholmod,direct,umfpack,krylov] [--threads 1,2] [--repeats 3]
+//       (a strategy may end in -amd or -metis for that ordering; also cholmod-metis and
+//       umfpack-best, UMFPACK trying several orderings and keeping the best)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
 //       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
 //
@@ -18,193 +20,46 @@
 // the symmetric part (K + K^T)/2 and one solve with it (of the symmetric part; not of K).
 // Newton (--newton N): the first N increments of the scene with each strategy, per increment
 // the Newton iterations, wall time, and the solver's counts.
-#include "bench/bench_util.h"
-#include "bench/contact_scenes.h"
-#include "bench/paper_scenes.h"
-#include "engine/world_state.h"
+#include "bench/tangent_cases.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
+
 #include <cstring>
-#include <fstream>
-#include <sstream>
 
 using namespace fibra;
+using namespace fibra::bench;
 
 namespace {
 
-struct Options {
-  std::string name = "yarn61";
-  bool friction = true;
+using Row = SolveRow;  // one strategy's solve (bench/tangent_cases.h)
+
+// UMFPACK's LU of the full K with UMFPACK_ORDERING_BEST (several orderings tried, the best
+// kept), which systems/linear_solver.h does not offer: "umfpack-best".
+Row umfpackBest(const LinearSystem& ls, const Eigen::VectorXd& b) {
+  Row r;
+  const SparseMatrix K = ls.symmetric ? SparseMatrix(ls.K.selfadjointView<Eigen::Upper>()) : ls.K;
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_BEST;
+  r.analyse = seconds([&] { lu.analyzePattern(K); });
+  r.factorise = seconds([&] { lu.factorize(K); });
+  if (lu.info() != Eigen::Success) r.shifted = -1;
+  Eigen::VectorXd x;
+  r.solve = seconds([&] { x = lu.solve(b); });
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
+struct Options : TangentCase {
   std::vector<std::string> strategies{"cholmod", "umfpack", "krylov"};
   std::vector<int> threads{1, 2};
   int repeats = 3;
   int newton = 0;
-  int warm = 3;                       // Newton iterations before the matrices are taken
-  std::string warmStrategy = "umfpack";
   int refactorAbove = KrylovSettings{}.refactorAbove;
   int maxIterations = 30;  // Newton iterations per attempt
   int cutbacks = 8;        // per increment
   std::vector<std::string> newtonStrategies{"krylov", "umfpack"};
   std::string csv = "linear_solves.csv";
 };
-
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
-  return out;
-}
-
-SceneDef sceneOf(const Options& o, int increments) {
-  const double mu = o.friction ? 0.1 : 0;
-  if (o.name == "yarn61") return scenes::yarnScene(61, mu, 0.002, increments);
-  if (o.name == "yarn250") return scenes::yarnScene(250, mu, 0.002, increments);
-  if (o.name == "fabric480") return scenes::fabricScene(mu, increments);
-  // smaller sizes for the rule of `auto`: squeezed bundles (bench/contact_scenes.h)
-  if (o.name == "bundle7") return scenes::bundle(1, 10, 0.01, 5e-4, mu);
-  if (o.name == "bundle19") return scenes::bundle(2, 20, 0.01, 5e-4, mu);
-  if (o.name == "bundle37") return scenes::bundle(3, 40, 0.01, 5e-4, mu);
-  std::fprintf(stderr, "unknown case %s\n", o.name.c_str());
-  std::exit(2);
-}
-
-// Peak resident memory since the last reset, GiB (Linux /proc).
-void resetPeak() { std::ofstream("/proc/self/clear_refs") << "5"; }
-double peakGiB() {
-  std::ifstream in("/proc/self/status");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / (1024.0 * 1024.0);
-  return NAN;
-}
-
-// |K x - b| / |b| with the full K (the stored upper triangle when symmetric).
-double relativeResidual(const LinearSystem& ls, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
-  Eigen::VectorXd Kx = ls.symmetric ? Eigen::VectorXd(ls.K.selfadjointView<Eigen::Upper>() * x)
-                                    : Eigen::VectorXd(ls.K * x);
-  return (Kx - b).norm() / b.norm();
-}
-
-struct Row {
-  double analyse = 0, factorise = 0, solve = 0, residual = 0, memory = 0;
-  int iterations = 0, shifted = 0;
-};
-
-double medianOf(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-// The reference: a fresh CHOLMOD supernodal LL^T of the symmetric part, one solve.
-Row cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& b) {
-  Row r;
-  SparseMatrix S;
-  if (ls.symmetric) S = ls.K;
-  else S = (0.5 * (ls.K + SparseMatrix(ls.K.transpose()))).triangularView<Eigen::Upper>();
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
-  llt.cholmod().print = 0;
-  r.analyse = bench::seconds([&] { llt.analyzePattern(S); });
-  r.factorise = bench::seconds([&] { llt.factorize(S); });
-  if (llt.info() != Eigen::Success) r.shifted = -1;  // not positive definite
-  Eigen::VectorXd x;
-  r.solve = bench::seconds([&] { x = llt.solve(b); });
-  r.residual = relativeResidual(ls, x, b);
-  return r;
-}
-
-// UMFPACK's LU of the full K with a given fill-reducing ordering (UMFPACK_ORDERING_*) and
-// strategy (UMFPACK_STRATEGY_*): "umfpack-amd", "umfpack-metis", "umfpack-best",
-// "umfpack-metis-unsym", "umfpack-amd-unsym".
-Row umfpackOrdering(const std::string& name, const LinearSystem& ls, const Eigen::VectorXd& b) {
-  Row r;
-  const SparseMatrix K = ls.symmetric ? SparseMatrix(ls.K.selfadjointView<Eigen::Upper>()) : ls.K;
-  Eigen::UmfPackLU<SparseMatrix> lu;
-  const bool metis = name.find("metis") != std::string::npos;
-  const bool best = name.find("best") != std::string::npos;
-  lu.umfpackControl()(UMFPACK_ORDERING) = metis ? UMFPACK_ORDERING_METIS
-                                          : best ? UMFPACK_ORDERING_BEST : UMFPACK_ORDERING_AMD;
-  if (name.find("unsym") != std::string::npos)
-    lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_UNSYMMETRIC;
-  r.analyse = bench::seconds([&] { lu.analyzePattern(K); });
-  r.factorise = bench::seconds([&] { lu.factorize(K); });
-  if (lu.info() != Eigen::Success) r.shifted = -1;
-  Eigen::VectorXd x;
-  r.solve = bench::seconds([&] { x = lu.solve(b); });
-  r.residual = relativeResidual(ls, x, b);
-  return r;
-}
-
-// CHOLMOD supernodal LL^T of the symmetric part with METIS nested dissection only
-// ("cholmod-metis"; CHOLMOD's default tries AMD and falls back to METIS on heavy fill).
-Row cholmodMetis(const LinearSystem& ls, const Eigen::VectorXd& b) {
-  Row r;
-  SparseMatrix S;
-  if (ls.symmetric) S = ls.K;
-  else S = (0.5 * (ls.K + SparseMatrix(ls.K.transpose()))).triangularView<Eigen::Upper>();
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
-  llt.cholmod().print = 0;
-  llt.cholmod().nmethods = 1;
-  llt.cholmod().method[0].ordering = CHOLMOD_METIS;
-  r.analyse = bench::seconds([&] { llt.analyzePattern(S); });
-  r.factorise = bench::seconds([&] { llt.factorize(S); });
-  if (llt.info() != Eigen::Success) r.shifted = -1;
-  Eigen::VectorXd x;
-  r.solve = bench::seconds([&] { x = llt.solve(b); });
-  r.residual = relativeResidual(ls, x, b);
-  return r;
-}
-
-Row strategyRun(const std::string& name, const LinearSystem& ls, const Eigen::VectorXd& b, int threads) {
-  if (name == "cholmod") return cholmodReference(ls, b);
-  if (name == "cholmod-metis") return cholmodMetis(ls, b);
-  if (name.rfind("umfpack-", 0) == 0) return umfpackOrdering(name, ls, b);
-  LinearStrategy s;
-  if (!parseStrategy(name, s)) std::exit(2);
-  LinearSolver solver;
-  solver.setStrategy(s);
-  solver.setBlasThreads(threads);
-  std::string msg;
-  Row r;
-  if (!solver.factorise(ls, msg)) std::printf("    %s: %s\n", name.c_str(), msg.c_str());
-  Eigen::VectorXd x;
-  solver.solve(b, x);
-  const LinearSolveStats& st = solver.stats();
-  r.analyse = st.analyse;
-  r.factorise = st.factorise;
-  r.solve = st.solve;
-  r.iterations = st.krylovIterations;
-  r.shifted = st.fallbacks + st.shifted;
-  r.residual = relativeResidual(ls, x, b);
-  return r;
-}
-
-// A world whose linear system holds a tangent met on the way: after `warm` Newton iterations of
-// the scene's first increment (solved by `warmStrategy`; the attempt then stops, and the tangent
-// Newton assembled last stays in ls: contact detected, friction sliding), or, with warm = 0, the
-// tangent at the start (contact detected, no slip yet: symmetric even with friction).
-std::unique_ptr<WorldState> warmWorld(const Options& o, int threads, double& assemble) {
-  auto w = std::make_unique<WorldState>();
-  w->scene = sceneOf(o, 5);
-  w->def.threads = threads;
-  LinearStrategy s;
-  if (!parseStrategy(o.warmStrategy, s)) std::exit(2);
-  w->def.linearStrategy = s;
-  for (StepDef& st : w->scene.steps) st.maxIterations = std::max(o.warm, 1), st.maxCutbacks = 0;
-  buildWorld(*w);
-  const double t = bench::seconds([&] {
-    if (o.warm == 0) {
-      runStage(*w, w->pipeline.detect, 0);
-      assemble = bench::median(3, [&] { runStage(*w, w->pipeline.assemble, 0, true); });
-      return;
-    }
-    const StepReport r = advance(*w);
-    assemble = r.timings.assemble / std::max(r.totalIterations, 1);
-    std::printf("warm-up (%s, %d threads): %d Newton iterations, %d contact elements, ",
-                o.warmStrategy.c_str(), threads, r.totalIterations, int(r.contact.elements));
-  });
-  std::printf("%.1f s; assembly %.3f s per iteration\n", t, assemble);
-  return w;
-}
 
 void matrices(const Options& o, std::FILE* csv) {
   std::printf("%-8s %3s %-8s %8s %10s %9s %9s %8s %6s %9s %8s %5s\n", "case", "thr", "strategy",
@@ -221,7 +76,7 @@ void matrices(const Options& o, std::FILE* csv) {
       std::vector<Row> rows;
       for (int k = 0; k < o.repeats; ++k) {
         resetPeak();
-        rows.push_back(strategyRun(s, ls, b, threads));
+        rows.push_back(s == "umfpack-best" ? umfpackBest(ls, b) : strategyRun(s, ls, b, threads));
         rows.back().memory = peakGiB();
       }
       auto med = [&](double Row::*f) {
@@ -295,17 +150,14 @@ int main(int argc, char** argv) {
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
-    if (k == "--case") o.name = v;
-    else if (k == "--friction") o.friction = v == "on";
-    else if (k == "--strategy") o.strategies = split(v);
+    if (parseCaseOption(o, k, v)) continue;
+    if (k == "--strategy") o.strategies = split(v);
     else if (k == "--threads") { o.threads.clear(); for (auto& t : split(v)) o.threads.push_back(std::stoi(t)); }
     else if (k == "--repeats") o.repeats = std::stoi(v);
     else if (k == "--newton") o.newton = std::stoi(v);
     else if (k == "--newton-strategy") o.newtonStrategies = split(v);
     else if (k == "--csv") o.csv = v;
-    else if (k == "--warm") o.warm = std::stoi(v);
     else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
-    else if (k == "--warm-strategy") o.warmStrategy = v;
     else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
     else if (k == "--max-iterations") o.maxIterations = std::stoi(v);
   }

@@ -2,7 +2,10 @@
 # fibra set-up: installs the Debian packages fibra needs (when missing), configures and
 # builds a Release tree in build/. Idempotent and quiet when everything is present.
 #   bash scripts/setup.sh            # library, program, tests, benches
-# Environment: FIBRA_BUILD_DIR (default build), FIBRA_JOBS (default: all cores).
+#   FIBRA_WITH_PETSC=1 bash scripts/setup.sh   # also Debian's petsc-dev (~115 packages, with
+#                                    # MUMPS and hypre), for bench_petsc_solves (optional)
+# Environment: FIBRA_BUILD_DIR (default build), FIBRA_JOBS (default: all cores),
+# FIBRA_WITH_PETSC (1: install petsc-dev too; nothing else needs it).
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=${FIBRA_BUILD_DIR:-$here/build}
@@ -11,6 +14,9 @@ jobs=${FIBRA_JOBS:-$(nproc)}
 packages=(build-essential cmake ninja-build ccache pkg-config
           libeigen3-dev libtbb-dev libsuitesparse-dev libopenblas-dev
           doctest-dev nlohmann-json3-dev zlib1g-dev gnuplot-nox)
+if [ "${FIBRA_WITH_PETSC:-0}" = 1 ]; then
+  packages+=(petsc-dev)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -30,6 +36,8 @@ case "$blas" in *openblas*) ;; *) echo "fibra setup: warning: libblas.so.3 is $b
 
 if [ ! -f "$build/build.ninja" ]; then
   cmake -S "$here" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+elif [ "${FIBRA_WITH_PETSC:-0}" = 1 ] && ! grep -q bench_petsc_solves "$build/build.ninja"; then
+  cmake "$build" >/dev/null  # PETSc installed after the tree was configured: find it now
 fi
 if ! cmake --build "$build" -j "$jobs" >"$build/build.log" 2>&1; then
   grep -vE '^\[[0-9]+/[0-9]+\] ' "$build/build.log" >&2

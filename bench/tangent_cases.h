@@ -1,0 +1,189 @@
+// fibra's own tangents for the linear-solve benches (bench/linear_solves.cpp,
+// bench/petsc_solves.cpp): the scene of a case, the world warmed up to the tangent Newton meets
+// on the way, the residual check with the full K, peak memory, and the two references every
+// table carries (a fresh CHOLMOD factorisation of the symmetric part; any strategy of
+// systems/linear_solver.h, e.g. "umfpack", fibra's default from 7 000 equations).
+#pragma once
+
+#include "bench/bench_util.h"
+#include "bench/contact_scenes.h"
+#include "bench/paper_scenes.h"
+#include "engine/world_state.h"
+
+#include <Eigen/CholmodSupport>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+
+namespace fibra::bench {
+
+// Which tangent: the scene, friction, and how far into its first increment.
+struct TangentCase {
+  std::string name = "yarn61";  // yarn61|yarn250|fabric480|bundle7|bundle19|bundle37
+  bool friction = true;         // mu 0.1, or frictionless
+  int warm = 3;                 // Newton iterations before the matrices are taken
+  std::string warmStrategy = "umfpack";
+};
+
+inline std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(item);
+  return out;
+}
+
+// Reads a case option (--case, --friction on|off, --warm, --warm-strategy) into c; false for
+// any other option.
+inline bool parseCaseOption(TangentCase& c, const std::string& k, const std::string& v) {
+  if (k == "--case") c.name = v;
+  else if (k == "--friction") c.friction = v == "on";
+  else if (k == "--warm") c.warm = std::stoi(v);
+  else if (k == "--warm-strategy") c.warmStrategy = v;
+  else return false;
+  return true;
+}
+
+inline SceneDef sceneOf(const TangentCase& c, int increments) {
+  const double mu = c.friction ? 0.1 : 0;
+  if (c.name == "yarn61") return scenes::yarnScene(61, mu, 0.002, increments);
+  if (c.name == "yarn250") return scenes::yarnScene(250, mu, 0.002, increments);
+  if (c.name == "fabric480") return scenes::fabricScene(mu, increments);
+  // smaller sizes for the rule of `auto`: squeezed bundles (bench/contact_scenes.h)
+  if (c.name == "bundle7") return scenes::bundle(1, 10, 0.01, 5e-4, mu);
+  if (c.name == "bundle19") return scenes::bundle(2, 20, 0.01, 5e-4, mu);
+  if (c.name == "bundle37") return scenes::bundle(3, 40, 0.01, 5e-4, mu);
+  std::fprintf(stderr, "unknown case %s\n", c.name.c_str());
+  std::exit(2);
+}
+
+// A field of /proc/self/status in kB ("VmHWM:", "VmRSS:"), as GiB (Linux).
+inline double statusGiB(const char* field) {
+  std::ifstream in("/proc/self/status");
+  const size_t n = std::strlen(field);
+  for (std::string line; std::getline(in, line);)
+    if (line.compare(0, n, field) == 0) return std::stod(line.substr(n)) / (1024.0 * 1024.0);
+  return NAN;
+}
+// Peak resident memory since the last reset, and resident memory now, GiB.
+inline void resetPeak() { std::ofstream("/proc/self/clear_refs") << "5"; }
+inline double peakGiB() { return statusGiB("VmHWM:"); }
+inline double residentGiB() { return statusGiB("VmRSS:"); }
+
+// |K x - b| / |b| with the full K (the stored upper triangle when symmetric).
+inline double relativeResidual(const LinearSystem& ls, const Eigen::VectorXd& x,
+                               const Eigen::VectorXd& b) {
+  Eigen::VectorXd Kx = ls.symmetric ? Eigen::VectorXd(ls.K.selfadjointView<Eigen::Upper>() * x)
+                                    : Eigen::VectorXd(ls.K * x);
+  return (Kx - b).norm() / b.norm();
+}
+
+inline double medianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// One solve of K x = b by one strategy: seconds, Krylov iterations, residual, peak GiB.
+struct SolveRow {
+  double analyse = 0, factorise = 0, solve = 0, residual = 0, memory = 0;
+  int iterations = 0, shifted = 0;  // shifted: < 0 not positive definite, > 0 shifted/LDL^T
+};
+
+// The reference: a fresh CHOLMOD supernodal LL^T of the symmetric part, one solve;
+// with `metis`, ordered by METIS alone ("cholmod-metis"; CHOLMOD's default tries AMD, and
+// METIS as well when AMD fills heavily).
+inline SolveRow cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& b,
+                                 bool metis = false) {
+  SolveRow r;
+  SparseMatrix S;
+  if (ls.symmetric) S = ls.K;
+  else S = (0.5 * (ls.K + SparseMatrix(ls.K.transpose()))).triangularView<Eigen::Upper>();
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  llt.cholmod().print = 0;
+  if (metis) {
+    llt.cholmod().nmethods = 1;
+    llt.cholmod().method[0].ordering = CHOLMOD_METIS;
+  }
+  r.analyse = seconds([&] { llt.analyzePattern(S); });
+  r.factorise = seconds([&] { llt.factorize(S); });
+  if (llt.info() != Eigen::Success) r.shifted = -1;  // not positive definite
+  Eigen::VectorXd x;
+  r.solve = seconds([&] { x = llt.solve(b); });
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
+// "cholmod" / "cholmod-metis" (the reference above) or a strategy of systems/linear_solver.h,
+// fresh solver; a strategy's name may end in "-amd" or "-metis" to impose that ordering
+// (solver.ordering; "umfpack-metis").
+inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls,
+                            const Eigen::VectorXd& b, int threads) {
+  if (name == "cholmod" || name == "cholmod-metis") return cholmodReference(ls, b, name != "cholmod");
+  std::string base = name;
+  Ordering ordering = Ordering::Auto;
+  for (const auto& [suffix, o] : {std::pair("-amd", Ordering::Amd), std::pair("-metis", Ordering::Metis)})
+    if (name.size() > std::strlen(suffix) && name.compare(name.size() - std::strlen(suffix), std::string::npos, suffix) == 0) {
+      base = name.substr(0, name.size() - std::strlen(suffix));
+      ordering = o;
+    }
+  LinearStrategy s;
+  if (!parseStrategy(base, s)) {
+    std::fprintf(stderr, "unknown strategy %s\n", name.c_str());
+    std::exit(2);
+  }
+  LinearSolver solver;
+  solver.setStrategy(s);
+  solver.setOrdering(ordering);
+  solver.setBlasThreads(threads);
+  std::string msg;
+  SolveRow r;
+  if (!solver.factorise(ls, msg)) std::printf("    %s: %s\n", name.c_str(), msg.c_str());
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  const LinearSolveStats& st = solver.stats();
+  r.analyse = st.analyse;
+  r.factorise = st.factorise;
+  r.solve = st.solve;
+  r.iterations = st.krylovIterations;
+  r.shifted = st.fallbacks + st.shifted;
+  r.residual = relativeResidual(ls, x, b);
+  return r;
+}
+
+// A world whose linear system holds a tangent met on the way: after `warm` Newton iterations of
+// the scene's first increment (solved by `warmStrategy`; the attempt then stops, and the tangent
+// Newton assembled last stays in ls: contact detected, friction sliding), or, with warm = 0, the
+// tangent at the start (contact detected, no slip yet: symmetric even with friction).
+// `assemble`: seconds per assembly. `onIteration`, when set, sees the linear system after every
+// warm-up Newton iteration (the tangents met on the way, for re-use experiments).
+inline std::unique_ptr<WorldState> warmWorld(
+    const TangentCase& c, int threads, double& assemble,
+    const std::function<void(const LinearSystem&)>& onIteration = {}) {
+  auto w = std::make_unique<WorldState>();
+  w->scene = sceneOf(c, 5);
+  w->def.threads = threads;
+  LinearStrategy s;
+  if (!parseStrategy(c.warmStrategy, s)) std::exit(2);
+  w->def.linearStrategy = s;
+  if (onIteration)
+    w->def.progress = [&ws = *w, onIteration](const Progress&) { onIteration(ws.system); };
+  for (StepDef& st : w->scene.steps) st.maxIterations = std::max(c.warm, 1), st.maxCutbacks = 0;
+  buildWorld(*w);
+  const double t = seconds([&] {
+    if (c.warm == 0) {
+      runStage(*w, w->pipeline.detect, 0);
+      assemble = median(3, [&] { runStage(*w, w->pipeline.assemble, 0, true); });
+      return;
+    }
+    const StepReport r = advance(*w);
+    assemble = r.timings.assemble / std::max(r.totalIterations, 1);
+    std::printf("warm-up (%s, %d threads): %d Newton iterations, %d contact elements, ",
+                c.warmStrategy.c_str(), threads, r.totalIterations, int(r.contact.elements));
+  });
+  std::printf("%.1f s; assembly %.3f s per iteration\n", t, assemble);
+  return w;
+}
+
+}  // namespace fibra::bench
