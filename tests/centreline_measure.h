@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 namespace fibra::test {
 
@@ -24,7 +26,21 @@ inline Vec3 centreline(const FibreStore& fs, const Eigen::VectorXd& q, Index f, 
 struct Closest {
   double distance;  // mm
   Vec3 fromJtoI;
+  double sI = 0, sJ = 0;  // where, on I and J, mm
 };
+
+// The directors g1, g2 of fibre f at s from its nodes (as centreline above).
+inline std::pair<Vec3, Vec3> directors(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+  const Index n = fs.elementCount[f];
+  const double h = fs.length[f] / n;
+  const Index e = std::clamp<Index>(Index(s / h), 0, n - 1);
+  const double xi = 2 * (s - e * h) / h - 1;
+  const Index a = fs.firstNode[f] + 2 * e;
+  const double N[3] = {0.5 * xi * (xi - 1), 1 - xi * xi, 0.5 * xi * (xi + 1)};
+  Vec3 g1 = Vec3::Zero(), g2 = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) g1 += N[k] * g1Of(q, a + k), g2 += N[k] * g2Of(q, a + k);
+  return {g1, g2};
+}
 
 // Closest approach of the centrelines of I and J within 0.5 mm of sI0 on I and sJ0 on J (mm):
 // sampled every 5 um, then every 0.05 um within 10 um of the best pair.
@@ -39,7 +55,20 @@ inline Closest closestApproach(const FibreStore& fs, const Eigen::VectorXd& q, I
         if (d < best) best = d, bestI = a, bestJ = b;
       }
   }
-  return {best, centreline(fs, q, I, bestI) - centreline(fs, q, J, bestJ)};
+  return {best, centreline(fs, q, I, bestI) - centreline(fs, q, J, bestJ), bestI, bestJ};
+}
+
+// The true overlap of I and J at their closest approach c: w_I + w_J - d, w = R |G^T n| each
+// fibre's half-width along the line of centres n (G = [g1 g2] its deformed directors there: a
+// flattened section is narrower), mm.
+inline double overlapAt(const FibreStore& fs, const Eigen::VectorXd& q, Index I, Index J,
+                        const Closest& c) {
+  const Vec3 n = c.fromJtoI / c.distance;
+  const auto width = [&](Index f, double s) {
+    const auto [g1, g2] = directors(fs, q, f, s);
+    return fs.radius[f] * std::hypot(g1.dot(n), g2.dot(n));
+  };
+  return width(I, c.sI) + width(J, c.sJ) - c.distance;
 }
 
 }  // namespace fibra::test

@@ -2,7 +2,8 @@
 // systems/: O(F^2) fibre pairs with no broadphase, every test point of every pair, the closest
 // point over every element of J by dense sampling and bisection, the centreline from
 // interpolation.h's sectionAt (not the per-element polynomials), L_int as a fine chord sum,
-// plane cuts by sampling and bisection, particles by a least-squares solve, normals from acos.
+// plane cuts by sampling and bisection, the closest points of a crossing by Newton on a
+// difference Hessian, particles by a least-squares solve, normals from acos.
 // It shares with the pipeline only the definitions: ContactParams (Delta_prox, the test-point
 // spacing rule, the angles, the self-contact separation) and the documented fallback rules.
 #pragma once
@@ -304,6 +305,38 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       auto [a, b] = bracket(J, z.sJ1, z.sJ2);
       if (I == J) a = std::max(a, e.sI + sep);
       if (a <= b) closest(fs, q, J, at(fs, q, I, e.sI).x0, a, b, e.sJ);
+    }
+    // A point element of two different fibres: both sections moved to the local minimum of the
+    // centreline distance D(a, b) = |x_I(a) - x_J(b)|^2 / 2 from there, by Newton with D's
+    // gradient [d . t_I, -d . t_J] from the sections and its Hessian by central differences of
+    // the gradient; kept when it converges inside both brackets, at a minimum, with the fibres
+    // more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings").
+    if (placed.size() == 1 && I != J) {
+      const auto [aI, bI] = bracket(I, z.sI1, z.sI2);
+      const auto [aJ, bJ] = bracket(J, z.sJ1, z.sJ2);
+      const auto gradient = [&](double a, double b) {
+        const Section A = at(fs, q, I, a), B = at(fs, q, J, b);
+        const Vec3 d = A.x0 - B.x0;
+        return Eigen::Vector2d(d.dot(A.dx0ds), -d.dot(B.dx0ds));
+      };
+      const double h = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
+      const double eps = 1e-6 * h;
+      Eigen::Vector2d u(e.sI, e.sJ);
+      for (int it = 0; it < 20; ++it) {
+        Eigen::Matrix2d H;
+        H.col(0) = (gradient(u(0) + eps, u(1)) - gradient(u(0) - eps, u(1))) / (2 * eps);
+        H.col(1) = (gradient(u(0), u(1) + eps) - gradient(u(0), u(1) - eps)) / (2 * eps);
+        H = 0.5 * (H + H.transpose()).eval();
+        if (!(H(0, 0) > 0 && H.determinant() > 0)) break;
+        const Eigen::Vector2d step = -H.ldlt().solve(gradient(u(0), u(1)));
+        u += step;
+        if (!(u(0) >= aI && u(0) <= bI && u(1) >= aJ && u(1) <= bJ)) break;
+        if (step.lpNorm<1>() <= 1e-10 * h) {
+          const Vec3 uI = at(fs, q, I, u(0)).dx0ds.normalized(), uJ = at(fs, q, J, u(1)).dx0ds.normalized();
+          if (uI.cross(uJ).norm() > std::sin(p.thetaParallel)) e.sI = u(0), e.sJ = u(1);
+          break;
+        }
+      }
     }
     const Section sI = at(fs, q, I, e.sI), sJ = at(fs, q, J, e.sJ);
     const Vec3 tI = sI.dx0ds.normalized(), tJ = sJ.dx0ds.normalized();
