@@ -5,7 +5,8 @@
 //   3. converged: commit (swap trial and committed, keep q, r, f_ext) and go on to the target;
 //      failed: discard the trial (back to the last converged q, r, f_ext), cut the attempt's
 //      size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
-//      state. The attempt size adapts (nextIncrement): it grows back after easy attempts, up
+//      state. Where nothing the scene prescribes changes over the failed attempt and the step
+//      has no damping, a smaller attempt would repeat it exactly: the step fails at once. The attempt size adapts (nextIncrement): it grows back after easy attempts, up
 //      to the nominal increment, and carries over to the next increment of the step, whose
 //      end is always reached exactly (frames and history rows stay on the nominal times);
 //   4. at the target: time, increment and step counters.
@@ -29,6 +30,32 @@ namespace {
 
 double stepStart(const WorldState& w, int step) {
   return step == 0 ? 0.0 : w.scene.steps[step - 1].endTime;
+}
+
+// Whether a table takes one value over [a, b] (at both ends and at its breakpoints between).
+bool constantOver(const Table& table, double a, double b) {
+  const double v = tableValue(table, a);
+  if (tableValue(table, b) != v) return false;
+  for (double t : table.t)
+    if (t > a && t < b && tableValue(table, t) != v) return false;
+  return true;
+}
+
+// Whether the loads, the held DOFs' motion and the tools' motion are all constant over [a, b]:
+// then, without damping, an attempt from a to any time in (a, b] solves the same equations
+// from the same state (the friction history and the stabilisation's anchor are those of the
+// converged state at a).
+bool nothingPrescribedChanges(const SceneDef& s, double a, double b) {
+  // A table scales a vector: a zero vector's table changes nothing.
+  const auto moves = [&](const Vec3& v, const Table& t) { return !v.isZero(0) && !constantOver(t, a, b); };
+  const auto turns = [&](bool rotates, const Table& t) { return rotates && !constantOver(t, a, b); };
+  for (const LoadDef& l : s.loads)
+    if (moves(l.vector, l.table)) return false;
+  for (const BcDef& c : s.bcs)
+    if (moves(c.displacement, c.displacementTable) || turns(c.rotates, c.angle)) return false;
+  for (const ToolDef& t : s.tools)
+    if (moves(t.displacement, t.displacementTable) || turns(t.rotates, t.angle)) return false;
+  return true;
 }
 
 // |f on the free DOFs| / F_ref at the converged state, as in Newton's test.
@@ -208,6 +235,13 @@ StepReport advance(WorldState& w) {
     w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled) return stop(StepStatus::Cancelled, "cancelled");
+    if (!(st.damping > 0) && nothingPrescribedChanges(w.scene, w.time, tTry))
+      return stop(StepStatus::Failed,
+                  "increment to t = " + number(t1) + " failed: " + nr.message +
+                      "; a smaller increment would repeat this attempt exactly: nothing the "
+                      "scene prescribes changes from t = " + number(w.time) + " to " +
+                      number(tTry) + " and the step has no damping (give the step a `damping`, "
+                      "the viscous continuation, so that its increments divide the motion)");
     if (++rep.cutbacks > st.maxCutbacks)
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
                                           std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message);

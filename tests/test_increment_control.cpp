@@ -2,7 +2,8 @@
 // (a clamped beam bent into a full circle by an end moment M = 2 pi EI / L: the tip comes back
 // to the clamp): an increment too large for Newton is reached through smaller attempts, whose
 // size the report gives; after a hard start the size grows back to the nominal increment; an
-// attempt that never came within the reference force is cut to a quarter, not a half.
+// attempt that never came within the reference force is cut to a quarter, not a half; an
+// attempt over which nothing changes is not cut at all.
 #include "engine/world.h"
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
@@ -29,6 +30,23 @@ SceneDef rollup(const std::string& step, bool fast = false) {
     replace(R"(1.9739208802178715e-05]}],)",
             R"(1.9739208802178715e-05], "table": "fast"}],
                "tables": {"fast": [[0, 0], [0.25, 0.5], [1, 0.6]]},)");
+  return loadSceneFromString(text, "rollup.json");
+}
+
+// samples/rollup.json with its end moment at full value from t = 0 (nothing changes over the
+// step) and its step replaced by `step`.
+SceneDef rollupAtFullLoad(const std::string& step) {
+  std::string text = readFile(sourcePath("samples/rollup.json"));
+  const auto replace = [&text](const std::string& from, const std::string& to) {
+    const size_t at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+  };
+  replace(R"("steps": [{"end_time": 1, "increments": 10, "output_every": 2}])",
+          R"("steps": [)" + step + "]");
+  replace(R"(1.9739208802178715e-05]}],)",
+          R"(1.9739208802178715e-05], "table": "full"}],
+             "tables": {"full": [[0, 1], [1, 1]]},)");
   return loadSceneFromString(text, "rollup.json");
 }
 
@@ -94,6 +112,24 @@ TEST_CASE("cutbacks stop at the round-off of the pseudo-time with a message that
   CHECK(r.message.find("the round-off of the pseudo-time") != std::string::npos);
   CHECK(r.cutbacks < 50);
   CHECK(w.time() < 1e-6);  // attempts below the residual's floor converge at once
+}
+
+TEST_CASE("a failed attempt over which nothing changes is not cut: the step fails at once, saying why") {
+  // The full moment from t = 0 in 3 Newton iterations: the attempt fails. Nothing the scene
+  // prescribes changes over it and the step has no damping, so every smaller attempt would
+  // solve the same equations from the same state: no cutback, a message that says so.
+  World w(rollupAtFullLoad(R"({"end_time": 1, "increments": 1, "max_iterations": 3})"));
+  const StepReport r = w.step();
+  CHECK(r.status == StepStatus::Failed);
+  CHECK(r.cutbacks == 0);
+  CHECK(r.message.find("would repeat this attempt exactly") != std::string::npos);
+  CHECK(w.time() == 0);
+  // With damping, a smaller attempt is a different (smaller) viscous step: it is cut as usual.
+  World damped(rollupAtFullLoad(
+      R"({"end_time": 1, "increments": 1, "max_iterations": 3, "damping": 1e-3})"));
+  const StepReport d = damped.step();
+  CHECK(d.cutbacks > 0);
+  CHECK(d.message.find("would repeat this attempt exactly") == std::string::npos);
 }
 
 TEST_CASE("a converged state with a folded element is rejected and cut, not accepted") {
