@@ -93,8 +93,9 @@ TEST_CASE("fabric loadings: a reduced 3 x 3 twill weaves in the pattern's order 
   // The acceptance check's bound (engine/contact_loops.cpp: an overlap beyond 1.5 x the deepest
   // reported penetration, or p_max, is never accepted; the elements report at most p_max), here
   // against the independent measure. The issue's aim, p_max, is not met: 1.16 p_max measured
-  // (5.8e-4 mm, warp0.f1 over weft1.f1, whose element reports 4.3e-4 mm at the same closest
-  // points; docs/RESULTS.md "Woven fabric, reduced: the twill").
+  // (5.8e-4 mm, warp0.f1 and weft1.f1, whose element reports 4.3e-4 mm at the same closest
+  // points, its particle turned 3.2 deg since loop A's last detection; docs/RESULTS.md "Woven
+  // fabric, reduced: test loadings", the twill).
   CHECK(m.worstOverlap <= 1.5 * s.contact.maxPenetration);
   CHECK(m.inOrder == m.total);
   CHECK(m.total == kYarns * kYarns);
