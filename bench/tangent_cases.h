@@ -123,9 +123,10 @@ inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls,
   if (name == "cholmod" || name == "cholmod-metis") return cholmodReference(ls, b, name != "cholmod");
   std::string base = name;
   Ordering ordering = Ordering::Auto;
-  for (const auto& [suffix, o] : {std::pair("-amd", Ordering::Amd), std::pair("-metis", Ordering::Metis)})
-    if (name.size() > std::strlen(suffix) && name.compare(name.size() - std::strlen(suffix), std::string::npos, suffix) == 0) {
-      base = name.substr(0, name.size() - std::strlen(suffix));
+  for (const auto& [suffix, o] : {std::pair(std::string("-amd"), Ordering::Amd),
+                                  std::pair(std::string("-metis"), Ordering::Metis)})
+    if (name.size() > suffix.size() && name.ends_with(suffix)) {
+      base = name.substr(0, name.size() - suffix.size());
       ordering = o;
     }
   LinearStrategy s;

@@ -271,7 +271,8 @@ void closestSections(const Intermediate& g, double aI, double bI, double aJ, dou
   const double h = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
   double sI = sides.sI, sJ = sides.sJ;
   for (int it = 0; it < 20; ++it) {
-    const CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sI), cJ = centrelineAt(fs, g.cl, g.J, sJ);
+    const CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sI);
+    const CentrelinePoint cJ = centrelineAt(fs, g.cl, g.J, sJ);
     const Vec3 d = cI.x - cJ.x, &tI = cI.dxds, &tJ = cJ.dxds;
     const double a11 = tI.dot(tI) + d.dot(centrelineSecond(fs, g.cl, g.I, sI));
     const double a22 = tJ.dot(tJ) - d.dot(centrelineSecond(fs, g.cl, g.J, sJ));

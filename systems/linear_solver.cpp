@@ -137,7 +137,8 @@ struct LinearSolver::Impl {
 
   // The fill-reducing ordering of the next analysis of s, for n equations.
   void order(Eigen::UmfPackLU<SparseMatrix>& s, Index n) const {
-    const bool metis = ordering == Ordering::Metis || (ordering == Ordering::Auto && n >= kMetisFromEquations);
+    const bool metis =
+        ordering == Ordering::Metis || (ordering == Ordering::Auto && n >= kMetisFromEquations);
     s.umfpackControl()(UMFPACK_ORDERING) = metis ? UMFPACK_ORDERING_METIS : UMFPACK_ORDERING_AMD;
   }
   template <class Cholmod>
@@ -313,7 +314,8 @@ void LinearSolver::setStrategy(LinearStrategy s) { impl_->strategy = s; }
 void LinearSolver::setKrylov(const KrylovSettings& k) { impl_->krylov = k; }
 void LinearSolver::setOrdering(Ordering o) {
   Impl& m = *impl_;
-  if (m.ordering != o) m.lltRevision = m.ldltRevision = m.luRevision = m.umfRevision = m.pre.revision = -1;
+  if (m.ordering != o)  // analyse again with the new ordering
+    m.lltRevision = m.ldltRevision = m.luRevision = m.umfRevision = m.pre.revision = -1;
   m.ordering = o;
 }
 void LinearSolver::setBlasThreads(int threads) { impl_->blasThreads = threads; }

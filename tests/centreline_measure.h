@@ -30,7 +30,8 @@ struct Closest {
 };
 
 // The directors g1, g2 of fibre f at s from its nodes (as centreline above).
-inline std::pair<Vec3, Vec3> directors(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+inline std::pair<Vec3, Vec3> directors(const FibreStore& fs, const Eigen::VectorXd& q, Index f,
+                                       double s) {
   const Index n = fs.elementCount[f];
   const double h = fs.length[f] / n;
   const Index e = std::clamp<Index>(Index(s / h), 0, n - 1);
