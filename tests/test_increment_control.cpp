@@ -15,27 +15,13 @@ using namespace fibra::test;
 
 namespace {
 
-// samples/rollup.json with its step replaced by `step` (JSON); with `fast`, half the moment in
-// the first quarter of the step and the next 10% over the other three.
-SceneDef rollup(const std::string& step, bool fast = false) {
-  std::string text = readFile(sourcePath("samples/rollup.json"));
-  const auto replace = [&text](const std::string& from, const std::string& to) {
-    const size_t at = text.find(from);
-    REQUIRE(at != std::string::npos);
-    text.replace(at, from.size(), to);
-  };
-  replace(R"("steps": [{"end_time": 1, "increments": 10, "output_every": 2}])",
-          R"("steps": [)" + step + "]");
-  if (fast)
-    replace(R"(1.9739208802178715e-05]}],)",
-            R"(1.9739208802178715e-05], "table": "fast"}],
-               "tables": {"fast": [[0, 0], [0.25, 0.5], [1, 0.6]]},)");
-  return loadSceneFromString(text, "rollup.json");
-}
+// The moment's table in rollup(): the sample's ramp from 0 to 1 over the step; `Fast`, half
+// the moment in the first quarter of the step and the next 10% over the other three; `Full`,
+// the whole moment from t = 0 (nothing changes over the step).
+enum class Moment { Ramp, Fast, Full };
 
-// samples/rollup.json with its end moment at full value from t = 0 (nothing changes over the
-// step) and its step replaced by `step`.
-SceneDef rollupAtFullLoad(const std::string& step) {
+// samples/rollup.json with its step replaced by `step` (JSON) and the moment's table.
+SceneDef rollup(const std::string& step, Moment moment = Moment::Ramp) {
   std::string text = readFile(sourcePath("samples/rollup.json"));
   const auto replace = [&text](const std::string& from, const std::string& to) {
     const size_t at = text.find(from);
@@ -44,9 +30,12 @@ SceneDef rollupAtFullLoad(const std::string& step) {
   };
   replace(R"("steps": [{"end_time": 1, "increments": 10, "output_every": 2}])",
           R"("steps": [)" + step + "]");
-  replace(R"(1.9739208802178715e-05]}],)",
-          R"(1.9739208802178715e-05], "table": "full"}],
-             "tables": {"full": [[0, 1], [1, 1]]},)");
+  if (moment != Moment::Ramp)
+    replace(R"(1.9739208802178715e-05]}],)",
+            R"(1.9739208802178715e-05], "table": "m"}], "tables": {"m": )" +
+                std::string(moment == Moment::Fast ? "[[0, 0], [0.25, 0.5], [1, 0.6]]"
+                                                   : "[[0, 1], [1, 1]]") +
+                "},");
   return loadSceneFromString(text, "rollup.json");
 }
 
@@ -86,7 +75,7 @@ TEST_CASE("a far-off attempt is cut to a quarter, a near one to a half") {
 }
 
 TEST_CASE("after a hard start the attempt size grows back to the nominal increment") {
-  World w(rollup(R"({"end_time": 1, "increments": 4})", true));
+  World w(rollup(R"({"end_time": 1, "increments": 4})", Moment::Fast));
   std::vector<StepReport> rows;
   while (!w.finished()) {
     rows.push_back(w.step());
@@ -118,15 +107,15 @@ TEST_CASE("a failed attempt over which nothing changes is not cut: the step fail
   // The full moment from t = 0 in 3 Newton iterations: the attempt fails. Nothing the scene
   // prescribes changes over it and the step has no damping, so every smaller attempt would
   // solve the same equations from the same state: no cutback, a message that says so.
-  World w(rollupAtFullLoad(R"({"end_time": 1, "increments": 1, "max_iterations": 3})"));
+  World w(rollup(R"({"end_time": 1, "increments": 1, "max_iterations": 3})", Moment::Full));
   const StepReport r = w.step();
   CHECK(r.status == StepStatus::Failed);
   CHECK(r.cutbacks == 0);
   CHECK(r.message.find("would repeat this attempt exactly") != std::string::npos);
   CHECK(w.time() == 0);
   // With damping, a smaller attempt is a different (smaller) viscous step: it is cut as usual.
-  World damped(rollupAtFullLoad(
-      R"({"end_time": 1, "increments": 1, "max_iterations": 3, "damping": 1e-3})"));
+  World damped(rollup(R"({"end_time": 1, "increments": 1, "max_iterations": 3, "damping": 1e-3})",
+                      Moment::Full));
   const StepReport d = damped.step();
   CHECK(d.cutbacks > 0);
   CHECK(d.message.find("would repeat this attempt exactly") == std::string::npos);
