@@ -2,6 +2,7 @@
 // lying on a parallel fibre under a heavy line load is laterally unstable, and loop B's plain
 // fixed point on the normals diverges in the lateral mode; the Anderson-mixed normals converge
 // to the straight (symmetric) equilibrium with fixed normals in Newton (the default "loop").
+#include "contact_scenes.h"
 #include "engine/world.h"
 #include "io/scene_loader.h"
 
@@ -11,32 +12,9 @@
 #include <string>
 
 using namespace fibra;
+using fibra::test::heavyLineContact;
 
 namespace {
-
-// line_contact_heavy reduced: a 6 mm frictionless fibre U (R = 0.1 mm, 6 quadratic elements) on a
-// clamped parallel fibre D under q = 1 N/mm, p_max = 5e-4 mm; U is held laterally (y) at both
-// ends and axially (x) at its start. The lateral gain of plain loop B is ~ q / (2 R K) with K
-// U's lateral bending stiffness EI (pi / L)^4 ~ 0.024 N/mm^2 (E 4000 MPa): ~ 200 at full load.
-std::string heavyScene(const std::string& contactExtra) {
-  return R"({
-    "units": "mm-N-MPa",
-    "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
-    "fibres": [
-      {"name": "U", "material": "m", "radius": 0.1, "elements": 6, "order": 2,
-       "geometry": {"type": "line", "points": [[-3, 0, 0.2], [3, 0, 0.2]], "director": [0, 0, 1]}},
-      {"name": "D", "material": "m", "radius": 0.1, "elements": 6, "order": 2,
-       "geometry": {"type": "line", "points": [[-3, 0, 0], [3, 0, 0]], "director": [0, 0, 1]}}],
-    "boundary_conditions": [
-      {"type": "fix", "group": "U.start", "dofs": ["x", "y", "g1y"]},
-      {"type": "fix", "group": "U.end", "dofs": ["y"]},
-      {"type": "clamp", "group": "D.all"}],
-    "loads": [{"type": "line_force", "group": "U.all", "vector": [0, 0, -1.0]}],
-    "contact": {"max_penetration": 0.0005)" +
-         contactExtra + R"(},
-    "stabilisation": {"stiffness": 1e-05, "fibres": ["U"]},
-    "steps": [{"end_time": 1, "increments": 5}]})";
-}
 
 // Largest |y| of U's centreline nodes, mm.
 double lateral(const World& w) {
@@ -51,7 +29,7 @@ double lateral(const World& w) {
 
 TEST_CASE("the Anderson-mixed normals hold a heavy parallel line contact straight") {
   const double q = 1.0, L = 6.0;  // N/mm, mm
-  World w(loadSceneFromString(heavyScene(""), "heavy.json"));
+  World w(loadSceneFromString(heavyLineContact(""), "heavy.json"));
   REQUIRE(w.scene().contact.normalAcceleration > 0);  // on by default
   double axial = 0;
   int mixes = 0;
@@ -85,7 +63,7 @@ TEST_CASE("the Anderson-mixed normals hold a heavy parallel line contact straigh
 }
 
 TEST_CASE("without the acceleration loop B's fixed point loses the heavy line contact") {
-  World w(loadSceneFromString(heavyScene(R"(, "normal_acceleration": 0)"), "heavy.json"));
+  World w(loadSceneFromString(heavyLineContact(R"(, "normal_acceleration": 0)"), "heavy.json"));
   REQUIRE(w.scene().contact.normalAcceleration == 0);
   bool failed = false;
   while (!w.finished() && !failed) failed = w.step().status != StepStatus::Converged;
