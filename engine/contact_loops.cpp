@@ -91,9 +91,10 @@ constexpr double kSameSections = 1e-2;
 
 // Loop B: Newton with the elements fixed, then the normals at the new state, until they stop
 // turning or n_B passes. Every update is recorded by the mixer (contact `normal_acceleration`);
-// when it has a secant step (the map showed itself unstable), that replaces the update. Linearised fibre normals (contact `normal_update` "newton") already are
-// those of the converged state: their update only records them (for the reports and the step
-// limit), and only fixed normals (end faces, tools) can ask for another pass.
+// when it has a secant step (the map showed itself unstable), that replaces the update.
+// Linearised fibre normals (contact `normal_update` "newton") already are those of the
+// converged state: their update only records them (for the reports and the step limit), and
+// only fixed normals (end faces, tools) can ask for another pass.
 NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settings,
                         const NewtonCallbacks& callbacks, StepTimings& timings,
                         ContactReport& report, NormalMixer& mixer, NewtonResult nr) {
@@ -134,9 +135,9 @@ bool inconsistent(const ContactReport& r) {
 }
 
 // Acceptance (fibre-fibre contact): the set is checked against a detection from the converged
-// state (checkContactSet; a cancel during it cancels the attempt); while it is inconsistent, up to kConsistencyPasses more passes solve
-// with the new detection's elements; still inconsistent, the attempt fails (a cutback), never a
-// silent acceptance.
+// state (checkContactSet; a cancel during it cancels the attempt); while it is inconsistent, up
+// to kConsistencyPasses more passes solve with the new detection's elements; still
+// inconsistent, the attempt fails (a cutback), never a silent acceptance.
 constexpr int kConsistencyPasses = 2;
 NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
                               const NewtonCallbacks& callbacks, StepTimings& timings,

@@ -137,7 +137,8 @@ struct LinearSolver::Impl {
 
   // The fill-reducing ordering of the next analysis of s, for n equations.
   void order(Eigen::UmfPackLU<SparseMatrix>& s, Index n) const {
-    const bool metis = ordering == Ordering::Metis || (ordering == Ordering::Auto && n >= kMetisFromEquations);
+    const bool metis =
+        ordering == Ordering::Metis || (ordering == Ordering::Auto && n >= kMetisFromEquations);
     s.umfpackControl()(UMFPACK_ORDERING) = metis ? UMFPACK_ORDERING_METIS : UMFPACK_ORDERING_AMD;
   }
   template <class Cholmod>
