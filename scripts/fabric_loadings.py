@@ -95,7 +95,8 @@ def initial_steps():
     twill's yarns move further when the normal rules come back (its floats): they come back
     damped, in 4 increments, and an undamped step settles the fabric; in one undamped increment
     the fibres slid by 1.5 R and more under elements detected before, and no new detection
-    closed the set (inconsistent contact set after 8 cutbacks of that same attempt). The settle
+    closed the set (inconsistent contact set; nothing changes over the step, so a cutback
+    repeats the same attempt and the step fails at once). The settle
     step's second increment changes no load: it starts from a detection at the settled state,
     whose elements the first one's large motion had left behind (true overlap 1.24 p_max after
     one increment, within the acceptance check's 1.5)."""
