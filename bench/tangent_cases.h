@@ -120,14 +120,18 @@ inline SolveRow cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& 
 // (solver.ordering; "umfpack-metis").
 inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls,
                             const Eigen::VectorXd& b, int threads) {
-  if (name == "cholmod" || name == "cholmod-metis") return cholmodReference(ls, b, name != "cholmod");
+  if (name == "cholmod" || name == "cholmod-metis")
+    return cholmodReference(ls, b, name != "cholmod");
   std::string base = name;
   Ordering ordering = Ordering::Auto;
-  for (const auto& [suffix, o] : {std::pair("-amd", Ordering::Amd), std::pair("-metis", Ordering::Metis)})
-    if (name.size() > std::strlen(suffix) && name.compare(name.size() - std::strlen(suffix), std::string::npos, suffix) == 0) {
-      base = name.substr(0, name.size() - std::strlen(suffix));
+  for (const auto& [suffix, o] :
+       {std::pair("-amd", Ordering::Amd), std::pair("-metis", Ordering::Metis)}) {
+    const std::size_t n = std::strlen(suffix);
+    if (name.size() > n && name.compare(name.size() - n, std::string::npos, suffix) == 0) {
+      base = name.substr(0, name.size() - n);
       ordering = o;
     }
+  }
   LinearStrategy s;
   if (!parseStrategy(base, s)) {
     std::fprintf(stderr, "unknown strategy %s\n", name.c_str());
