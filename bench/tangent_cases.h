@@ -120,15 +120,17 @@ inline SolveRow cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& 
 // (solver.ordering; "umfpack-metis").
 inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls,
                             const Eigen::VectorXd& b, int threads) {
-  if (name == "cholmod" || name == "cholmod-metis") return cholmodReference(ls, b, name != "cholmod");
+  if (name == "cholmod" || name == "cholmod-metis")
+    return cholmodReference(ls, b, name != "cholmod");
   std::string base = name;
   Ordering ordering = Ordering::Auto;
   for (const auto& [suffix, o] : {std::pair(std::string("-amd"), Ordering::Amd),
-                                  std::pair(std::string("-metis"), Ordering::Metis)})
+                                  std::pair(std::string("-metis"), Ordering::Metis)}) {
     if (name.size() > suffix.size() && name.ends_with(suffix)) {
       base = name.substr(0, name.size() - suffix.size());
       ordering = o;
     }
+  }
   LinearStrategy s;
   if (!parseStrategy(base, s)) {
     std::fprintf(stderr, "unknown strategy %s\n", name.c_str());

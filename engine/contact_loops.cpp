@@ -135,9 +135,9 @@ bool inconsistent(const ContactReport& r) {
 }
 
 // Acceptance (fibre-fibre contact): the set is checked against a detection from the converged
-// state (checkContactSet; a cancel during it cancels the attempt); while it is inconsistent, up to kConsistencyPasses more passes solve
-// with the new detection's elements; still inconsistent, the attempt fails (a cutback), never a
-// silent acceptance.
+// state (checkContactSet; a cancel during it cancels the attempt); while it is inconsistent, up
+// to kConsistencyPasses more passes solve with the new detection's elements; still
+// inconsistent, the attempt fails (a cutback), never a silent acceptance.
 constexpr int kConsistencyPasses = 2;
 NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
                               const NewtonCallbacks& callbacks, StepTimings& timings,

@@ -7,9 +7,9 @@
 //      size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
 //      state. Where nothing the scene prescribes changes over the failed attempt and the step
 //      has no damping, a smaller attempt would repeat it exactly: the step fails at once. The
-//      attempt size adapts (nextIncrement): it grows back after easy attempts, up
-//      to the nominal increment, and carries over to the next increment of the step, whose
-//      end is always reached exactly (frames and history rows stay on the nominal times);
+//      attempt size adapts (nextIncrement): it grows back after easy attempts, up to the
+//      nominal increment, and carries over to the next increment of the step, whose end is
+//      always reached exactly (frames and history rows stay on the nominal times);
 //   4. at the target: time, increment and step counters.
 // After a failure or a cancellation the world is at its last converged state: the start of the
 // increment, or the last sub-increment that converged after a cutback.
@@ -245,8 +245,9 @@ StepReport advance(WorldState& w) {
                   "increment to t = " + number(t1) + " failed: " + nr.message +
                       "; a smaller increment would repeat this attempt exactly: nothing the "
                       "scene prescribes changes from t = " + number(w.time) + " to " +
-                      number(tTry) + " and the step has no damping (give the step a `damping`, "
-                      "the viscous continuation, so that its increments divide the motion)");
+                      number(tTry) + " and the step has no damping (ramp the loads or the "
+                      "motion over the step with a table, or give the step a `damping`, the "
+                      "viscous continuation, so that a smaller increment is a smaller change)");
     if (++rep.cutbacks > st.maxCutbacks)
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
                                           std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message);

@@ -13,7 +13,11 @@ fibre's start at the x (warp) or y (weft) it reaches in the force-controlled ini
   fibra run /tmp/fabric_settle.json --out /tmp/fabric_settle --threads 1
   python3 scripts/fabric_loadings.py --from /tmp/fabric_settle/final_state.csv
 
-and the same three commands with `--weave twill` (settle scene /tmp/fabric_twill_settle.json).
+and for the twill the same three with `--weave twill`:
+
+  python3 scripts/fabric_loadings.py --settle --weave twill   # /tmp/fabric_twill_settle.json
+  fibra run /tmp/fabric_twill_settle.json --out /tmp/fabric_twill_settle --threads 1
+  python3 scripts/fabric_loadings.py --weave twill --from /tmp/fabric_twill_settle/final_state.csv
 
 Units: mm, N, MPa.
 """
@@ -91,7 +95,8 @@ def initial_steps():
     twill's yarns move further when the normal rules come back (its floats): they come back
     damped, in 4 increments, and an undamped step settles the fabric; in one undamped increment
     the fibres slid by 1.5 R and more under elements detected before, and no new detection
-    closed the set (inconsistent contact set after 8 cutbacks of that same attempt). The settle
+    closed the set (inconsistent contact set; nothing changes over the step, so a cutback
+    repeats the same attempt and the step fails at once). The settle
     step's second increment changes no load: it starts from a detection at the settled state,
     whose elements the first one's large motion had left behind (true overlap 1.24 p_max after
     one increment, within the acceptance check's 1.5)."""
@@ -150,7 +155,7 @@ def biaxial(shifts):
     tension = {"name": "biaxial_tension", "end_time": t0 + 1, "increments": 20}
     if WEAVE["pattern"] != "plain":
         # Undamped, the twill's second increment stagnates at a relative residual of 0.14 after
-        # 8 cutbacks; with this damping the viscous force ends at 6e-4 of the edge force.
+        # 8 cutbacks; with this damping the viscous force ends at 2.4e-3 of the reference force.
         tension["damping"] = BIAXIAL_DAMPING
     s["steps"] = initial_steps() + [tension]
     s["output"] = {"vtu": False, "probes": [{"name": "warp_start", "fibre": "fab.warp0.f0",
@@ -205,12 +210,20 @@ def title():
 
 def main():
     global WEAVE
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--settle", action="store_true")
-    ap.add_argument("--from", dest="state")
-    ap.add_argument("--out", default="samples")
-    ap.add_argument("--weave", choices=sorted(WEAVES), default="plain")
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--settle", action="store_true",
+                    help="write the force-controlled settle scene to /tmp (see above) and stop")
+    ap.add_argument("--from", dest="state", metavar="FINAL_STATE_CSV",
+                    help="the settle run's final_state.csv: the fibre starts' positions")
+    ap.add_argument("--out", default="samples",
+                    help="directory the loading scenes are written to (default: samples)")
+    ap.add_argument("--weave", choices=sorted(WEAVES), default="plain",
+                    help="plain: fabric_biaxial.json and fabric_shear.json (2 x 2); "
+                         "twill: fabric_twill_biaxial.json (3 x 3) (default: plain)")
     a = ap.parse_args()
+    if not a.settle and not a.state:
+        ap.error("--from FINAL_STATE_CSV is needed (or --settle to write the settle scene)")
     WEAVE = WEAVES[a.weave]
     plain = a.weave == "plain"
     if a.settle:

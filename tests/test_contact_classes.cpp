@@ -40,7 +40,7 @@ SceneDef twoPairs(double mu0, double pMax0, double mu1, double pMax1) {
       f.contactClass = f.name == a ? "a" + std::to_string(k) : "b" + std::to_string(k);
       s.fibres.push_back(f);
     }
-    s.groups.push_back({b + ".mid", b, {10}});
+    s.groups.push_back({b + ".mid", b, {10}, {}});
     hold(s, a + ".start", {X, Y, Z, G1Y});
     hold(s, a + ".end", {X, Y, Z});
     hold(s, b + ".start", {X, Y, Z, G1X}, Vec3(0.05, 0, 0), drag);
