@@ -20,6 +20,7 @@
 
 #include "app/arguments.h"
 
+#include "app/study_knob.h"
 #include "app/study_plot.h"
 #include "engine/world.h"
 #include "io/json_reader.h"
@@ -51,11 +52,6 @@ using Json = nlohmann::json;
 
 constexpr int kDone = 0, kFailed = 1, kBadInput = 2;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Bad input found before anything runs or is written (exit 2).
-struct InputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct Arguments {
   std::string scene, vary, observe, out, reference;
@@ -103,87 +99,6 @@ Arguments parse(int argc, char** argv) {
   return a;
 }
 
-// ---- The knob: a field of the scene's JSON and its values ----
-
-// One step of a field path: an object's key, or an array's index (key empty).
-struct PathStep {
-  std::string key;
-  size_t index = 0;
-};
-
-// "fibres[0].elements" -> {fibres, [0], elements}; std::invalid_argument for anything else.
-std::vector<PathStep> parsePath(const std::string& field) {
-  const auto bad = [&] {
-    return std::invalid_argument("--vary: expected a field path such as fibres[0].elements, got '" +
-                                 field + "'");
-  };
-  std::vector<PathStep> path;
-  size_t i = 0;
-  while (i < field.size()) {
-    const size_t end = field.find_first_of(".[]", i);
-    const std::string key = field.substr(i, end - i);
-    if (key.empty()) throw bad();
-    path.push_back({key});
-    i = end == std::string::npos ? field.size() : end;
-    while (i < field.size() && field[i] == '[') {
-      const size_t close = field.find(']', i);
-      const std::string digits = field.substr(i + 1, close - i - 1);
-      if (close == std::string::npos || digits.empty() || digits.size() > 9 ||
-          digits.find_first_not_of("0123456789") != std::string::npos)
-        throw bad();
-      path.push_back({"", size_t(std::stoul(digits))});
-      i = close + 1;
-    }
-    if (i < field.size() && (field[i] != '.' || i + 1 == field.size())) throw bad();
-    if (i < field.size()) ++i;
-  }
-  if (path.empty()) throw bad();
-  return path;
-}
-
-// The value at `path` in `root`. Every step but the last must exist; the last may be a key that
-// the object lacks (a field left at its default), which is then added. InputError otherwise.
-Json& slot(Json& root, const std::vector<PathStep>& path, const std::string& field,
-           const std::string& scene) {
-  Json* at = &root;
-  std::string walked;
-  for (size_t k = 0; k < path.size(); ++k) {
-    const PathStep& s = path[k];
-    const bool last = k + 1 == path.size();
-    const std::string here = s.key.empty() ? walked + "[" + std::to_string(s.index) + "]"
-                                           : (walked.empty() ? s.key : walked + "." + s.key);
-    const bool exists = s.key.empty() ? at->is_array() && s.index < at->size()
-                                      : at->is_object() && (at->contains(s.key) || last);
-    if (!exists)
-      throw InputError(
-          "--vary " + field + ": " + scene + " has no '" + here + "'" +
-          (at->is_object() || at->is_array() ? "" : " ('" + walked + "' holds a value)"));
-    at = s.key.empty() ? &(*at)[s.index] : &(*at)[s.key];
-    walked = here;
-  }
-  return *at;
-}
-
-// A value from the command line: a JSON number or boolean when it reads as one, else a string.
-Json parseValue(const std::string& text) {
-  try {
-    const Json j = Json::parse(text);
-    if (j.is_number() || j.is_boolean()) return j;
-  } catch (const Json::exception&) {
-  }
-  return text;
-}
-
-// DIR's folder name of a variant: FIELD=VALUE, characters other than letters, digits and
-// . _ - = + [ ] made '_'.
-std::string folderName(const std::string& field, const std::string& value) {
-  std::string name = field + "=" + value;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) &&
-        std::string("._-=+[]").find(c) == std::string::npos)
-      c = '_';
-  return name;
-}
 
 struct Variant {
   std::string text;  // the value as given
