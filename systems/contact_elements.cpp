@@ -212,9 +212,20 @@ void forEachElementAbscissa(const Intermediate& g, double L, bool weighted, Visi
   piece(a, 1);
 }
 
-// The sections of I and J at zeta (eq. 8 and its degenerate cases); `sep` is the self-contact
-// separation (I == J).
-ElementSides sectionsAt(const Intermediate& g, double zeta, double delta, double sep) {
+// Where a zone's sections are sought: its intervals on I and J widened by Delta_prox, clamped to
+// the fibres (mm; one per zone, shared by its elements).
+struct Windows {
+  double aI, bI, aJ, bJ;
+};
+Windows searchWindows(const Intermediate& g, double delta) {
+  const auto [aI, bI] = widened(g.fs, g.I, g.sI1, g.sI2, delta);
+  const auto [aJ, bJ] = widened(g.fs, g.J, g.sJ1, g.sJ2, delta);
+  return {aI, bI, aJ, bJ};
+}
+
+// The sections of I and J at zeta (eq. 8 and its degenerate cases) within the zone's windows;
+// `sep` is the self-contact separation (I == J).
+ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, double sep) {
   const FibreStore& fs = g.fs;
   const double sIz = g.sI(zeta), sJz = g.sJ(zeta);
   CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sIz), cJ = centrelineAt(fs, g.cl, g.J, sJz);
@@ -231,8 +242,7 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, double delta, double
     t = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
     out.flags |= kFallbackTangent;
   }
-  auto [aI, bI] = widened(fs, g.I, g.sI1, g.sI2, delta);
-  auto [aJ, bJ] = widened(fs, g.J, g.sJ1, g.sJ2, delta);
+  double aI = w.aI, bI = w.bI, aJ = w.aJ, bJ = w.bJ;  // narrowed below for self-contact
   const bool okI = planeCut(fs, g.cl, g.I, xInt, t, sIz, cI, aI, bI, out.sI);
   const bool okJ = planeCut(fs, g.cl, g.J, xInt, t, sJz, cJ, aJ, bJ, out.sJ);
   if (okI && okJ) return out;
@@ -265,8 +275,8 @@ Vec3 centrelineSecond(const FibreStore& fs, const CentrelineStore& cl, Index f, 
 // widened intervals to a minimum (dF positive definite) and the fibres make more than
 // theta_parallel there (nearly parallel fibres have no well-posed closest pair); else the eq. 8
 // sections stay.
-void closestSections(const Intermediate& g, double aI, double bI, double aJ, double bJ,
-                     double thetaParallel, ElementSides& sides) {
+void closestSections(const Intermediate& g, const Windows& w, double thetaParallel,
+                     ElementSides& sides) {
   const FibreStore& fs = g.fs;
   const double h = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
   double sI = sides.sI, sJ = sides.sJ;
@@ -281,7 +291,7 @@ void closestSections(const Intermediate& g, double aI, double bI, double aJ, dou
     const double f1 = d.dot(tI), f2 = -d.dot(tJ);
     const double dI = -(a22 * f1 - a12 * f2) / det, dJ = -(a11 * f2 - a12 * f1) / det;
     sI += dI, sJ += dJ;
-    if (!(sI >= aI && sI <= bI && sJ >= aJ && sJ <= bJ)) return;
+    if (!(sI >= w.aI && sI <= w.bI && sJ >= w.aJ && sJ <= w.bJ)) return;
     if (std::abs(dI) + std::abs(dJ) <= 1e-10 * h) {
       const Vec3 uI = centrelineAt(fs, g.cl, g.I, sI).dxds.normalized();
       const Vec3 uJ = centrelineAt(fs, g.cl, g.J, sJ).dxds.normalized();
@@ -328,7 +338,7 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
 void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
                   const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
-  const double delta = proximityDistance(p, g.I, g.J);
+  const Windows windows = searchWindows(g, proximityDistance(p, g.I, g.J));
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
   double total = 0;
   Index e = first;
@@ -341,12 +351,8 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.weight[e] = total > 0 ? el.length[e] * double(nc) / total : 1.0;
   for (e = first; e < first + nc; ++e) {
     const double zeta = el.zeta[e];
-    ElementSides sides = sectionsAt(g, zeta, delta, sep);
-    if (nc == 1 && g.I != g.J) {
-      const auto [aI, bI] = widened(fs, g.I, g.sI1, g.sI2, delta);
-      const auto [aJ, bJ] = widened(fs, g.J, g.sJ1, g.sJ2, delta);
-      closestSections(g, aI, bI, aJ, bJ, p.thetaParallel, sides);
-    }
+    ElementSides sides = sectionsAt(g, zeta, windows, sep);
+    if (nc == 1 && g.I != g.J) closestSections(g, windows, p.thetaParallel, sides);
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];
