@@ -12,15 +12,24 @@
 
 namespace fibra::test {
 
-// x0(s) of fibre f from its nodes (quadratic Lagrange on each of its equal elements), mm.
-inline Vec3 centreline(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+// The nodal vector at `offset` in each node's DOFs (0: x0, 3: g1, 6: g2) of fibre f at s,
+// quadratic Lagrange on each of its equal elements.
+inline Vec3 interpolated(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s,
+                         int offset) {
   const Index n = fs.elementCount[f];
   const double h = fs.length[f] / n;
   const Index e = std::clamp<Index>(Index(s / h), 0, n - 1);
   const double xi = 2 * (s - e * h) / h - 1;
   const Index a = fs.firstNode[f] + 2 * e;
-  return 0.5 * xi * (xi - 1) * x0Of(q, a) + (1 - xi * xi) * x0Of(q, a + 1) +
-         0.5 * xi * (xi + 1) * x0Of(q, a + 2);
+  const double N[3] = {0.5 * xi * (xi - 1), 1 - xi * xi, 0.5 * xi * (xi + 1)};
+  Vec3 v = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) v += N[k] * q.segment<3>(kNodeDofs * (a + k) + offset);
+  return v;
+}
+
+// x0(s) of fibre f from its nodes, mm.
+inline Vec3 centreline(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
+  return interpolated(fs, q, f, s, 0);
 }
 
 struct Closest {
@@ -29,18 +38,10 @@ struct Closest {
   double sI = 0, sJ = 0;  // where, on I and J, mm
 };
 
-// The directors g1, g2 of fibre f at s from its nodes (as centreline above).
+// The directors g1, g2 of fibre f at s from its nodes.
 inline std::pair<Vec3, Vec3> directors(const FibreStore& fs, const Eigen::VectorXd& q, Index f,
                                        double s) {
-  const Index n = fs.elementCount[f];
-  const double h = fs.length[f] / n;
-  const Index e = std::clamp<Index>(Index(s / h), 0, n - 1);
-  const double xi = 2 * (s - e * h) / h - 1;
-  const Index a = fs.firstNode[f] + 2 * e;
-  const double N[3] = {0.5 * xi * (xi - 1), 1 - xi * xi, 0.5 * xi * (xi + 1)};
-  Vec3 g1 = Vec3::Zero(), g2 = Vec3::Zero();
-  for (int k = 0; k < 3; ++k) g1 += N[k] * g1Of(q, a + k), g2 += N[k] * g2Of(q, a + k);
-  return {g1, g2};
+  return {interpolated(fs, q, f, s, 3), interpolated(fs, q, f, s, 6)};
 }
 
 // Closest approach of the centrelines of I and J within 0.5 mm of sI0 on I and sJ0 on J (mm):
