@@ -33,6 +33,8 @@ struct ContactForceStore {
   // --- per contact element ---
   std::vector<double> gap;          // g_N = (x^I - x^J) . N, mm (negative: penetration)
   std::vector<double> normalForce;  // R_N >= 0, N
+  std::vector<Vec3> normal;         // N the force was computed with (unit; the element's own may
+                                    // have turned since, in loop B), -
   std::vector<Vec3> force;          // f on particle I (J or the tool gets -f), N
   std::vector<Eigen::Matrix3d> stiffness;  // S = -df/d(x^I - x^J), N/mm
   std::vector<Vec3> gRev;           // reversible slip, mm

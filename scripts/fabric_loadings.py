@@ -35,11 +35,14 @@ WEAVE = WEAVES["plain"]  # set by --weave
 TENSION = 0.01         # N per fibre end, the small tension of the initial geometry
 MU = 0.1               # friction between yarns in the loading scenes
 STRAIN = 0.004         # biaxial: elongation / length at the end of the test
-SHEAR_U = 0.05         # shear: edge displacement amplitude, mm (+-, each edge)
+SHEAR_U = 0.3          # shear: edge displacement amplitude, mm (+-, each edge; --shear-u):
+                       # shear angle atan(2 u / 4.5 mm) = +-7.6 deg. At +-1.27 deg (0.05 mm) too
+                       # few crossings slid for the dissipation to grow with mu (docs/RESULTS.md)
 CYCLES = 2             # shear cycles
-QUARTER = 2            # shear increments per quarter cycle
-DAMPING = 0.1          # shear: viscous continuation, N/mm x pseudo-time per node
+QUARTER = 4            # shear increments per quarter cycle
+DAMPING = 0.1          # the twill's normal rules: viscous continuation, N/mm x pseudo-time per node
 BIAXIAL_DAMPING = 0.01 # the twill's biaxial tension, same unit
+SHEAR_DAMPING = 0.01   # shear, same unit (0.1 doubles the edge force at u = 0.3 mm)
 
 
 def length():
@@ -191,7 +194,7 @@ def shear(shifts):
     quarters = [(1, QUARTER)] + [(2, 2 * QUARTER)] * (2 * CYCLES - 1) + [(1, QUARTER)]
     for k, (dt, n) in enumerate(quarters):
         t += dt
-        steps.append({"name": f"shear_{k}", "end_time": t, "increments": n, "damping": DAMPING})
+        steps.append({"name": f"shear_{k}", "end_time": t, "increments": n, "damping": SHEAR_DAMPING})
     s["steps"] = steps
     s["output"] = {"vtu": False, "probes": [{"name": "warp_start", "fibre": "fab.warp0.f0",
                                              "node": 0}],
@@ -209,7 +212,7 @@ def title():
 
 
 def main():
-    global WEAVE
+    global WEAVE, SHEAR_U
     ap = argparse.ArgumentParser(description=__doc__,
                                  formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--settle", action="store_true",
@@ -218,6 +221,9 @@ def main():
                     help="the settle run's final_state.csv: the fibre starts' positions")
     ap.add_argument("--out", default="samples",
                     help="directory the loading scenes are written to (default: samples)")
+    ap.add_argument("--shear-u", type=float, default=SHEAR_U, metavar="MM",
+                    help=f"shear amplitude, each edge (default {SHEAR_U} mm; 0.8 mm is the "
+                         "paper's +-20 deg)")
     ap.add_argument("--weave", choices=sorted(WEAVES), default="plain",
                     help="plain: fabric_biaxial.json and fabric_shear.json (2 x 2); "
                          "twill: fabric_twill_biaxial.json (3 x 3) (default: plain)")
@@ -225,6 +231,9 @@ def main():
     if not a.settle and not a.state:
         ap.error("--from FINAL_STATE_CSV is needed (or --settle to write the settle scene)")
     WEAVE = WEAVES[a.weave]
+    if not a.shear_u > 0:
+        ap.error(f"--shear-u must be a positive displacement in mm, not {a.shear_u}")
+    SHEAR_U = a.shear_u
     plain = a.weave == "plain"
     if a.settle:
         path = "/tmp/fabric_settle.json" if plain else f"/tmp/fabric_{a.weave}_settle.json"

@@ -45,6 +45,7 @@ struct ContactLawState {
 struct ContactLawResult {
   double gap = 0;               // g, mm
   double normalForce = 0;       // R_N >= 0, N
+  Vec3 normal = Vec3::Zero();   // N used, unit
   Vec3 gRev = Vec3::Zero();     // reversible slip now, mm
   bool slip = false;            // the slip branch was taken (|trial| > g_max unless held)
   double trialRatio = 0;        // |trial| / g_max (0 without friction or normal force)
@@ -71,6 +72,7 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
                                    std::uint8_t hold = kStatusNone) {
   ContactLawResult out;
   const Vec3& N = s.normal;
+  out.normal = N;
   out.gap = d.dot(N);
   double dR;
   penaltyForce(out.gap, p.penalty, p.pReg, out.normalForce, dR);
@@ -111,6 +113,7 @@ inline void resizeContactForces(ContactForceStore& f, Index n) {
 inline void storeContactLaw(const ContactLawResult& r, Index e, ContactForceStore& f) {
   f.gap[e] = r.gap;
   f.normalForce[e] = r.normalForce;
+  f.normal[e] = r.normal;
   f.force[e] = r.force;
   f.stiffness[e] = r.stiffness;
   f.gRev[e] = r.gRev;

@@ -13,7 +13,7 @@ void addParticleForce(const ParticleWeights& w, const Vec3& F, double sign, Eige
 void contactForces(const ContactState& c, EnergyForces& out) {
   const ContactElementStore& el = c.elements;
   for (Index e = 0; e < el.size() && e < c.forces.size(); ++e) {
-    const Vec3 normal = c.forces.normalForce[e] * el.normal[e];
+    const Vec3 normal = c.forces.normalForce[e] * c.forces.normal[e];
     const Vec3 friction = c.forces.force[e] - normal;
     for (auto [side, sign] : {std::pair{&el.sideI[e], 1.0}, std::pair{&el.sideJ[e], -1.0}}) {
       addParticleForce(*side, normal, sign, out.normal);
@@ -22,7 +22,7 @@ void contactForces(const ContactState& c, EnergyForces& out) {
   }
   const ToolContactStore& tl = c.toolElements;
   for (Index i = 0; i < tl.size() && i < c.toolForces.size(); ++i) {
-    const Vec3 normal = c.toolForces.normalForce[i] * tl.normal[i];
+    const Vec3 normal = c.toolForces.normalForce[i] * c.toolForces.normal[i];
     addParticleForce(tl.side[i], normal, 1, out.tools);
     addParticleForce(tl.side[i], c.toolForces.force[i] - normal, 1, out.friction);
   }

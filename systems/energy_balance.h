@@ -4,7 +4,9 @@
 // energyForces   reads FibreStore (layout), ConstraintStore (held DOFs), LinearSystem (r, fext),
 //                the contact state (elements with their particle weights, forces; may be null);
 //                writes EnergyForces: generalised forces per DOF (a particle force F on
-//                x = sum_a c_a0 x0_a + c_a1 g1_a + c_a2 g2_a gives c_af F on node a's field f).
+//                x = sum_a c_a0 x0_a + c_a1 g1_a + c_a2 g2_a gives c_af F on node a's field f);
+//                an element's normal part is R_N N with the N its force was computed with
+//                (ContactForceStore::normal), the rest of f is friction's.
 // accumulateEnergy reads the forces of the last and the new converged state, their states q and
 //                the stabilisation (spring and viscous forces of the new state, anchored at the
 //                increment's start); writes EnergyBalance:

@@ -79,6 +79,7 @@ LinearisedContact linearisedContact(const FibreStore& fs, const Eigen::VectorXd&
   LinearisedContact out;
   out.law.gap = g.value();
   out.law.normalForce = R.value();
+  out.law.normal = valueOf3(N);
   if (p.mu > 0 && R.value() > 0) {
     const VAD w = d + (el.gRev0[e] - el.d0[e]).cast<AD>();
     const VAD trial = w - N * N.dot(w);                    // P (g_rev,0 + d - d0), mm
