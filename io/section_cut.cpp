@@ -57,6 +57,93 @@ SectionOutline cutAt(const FibreFrame& f, Index fibre, const CutPlane& plane, do
   return out;
 }
 
+// A centreline crossing at least this steep (angle to the plane, rad) is cut along the rim lines;
+// shallower, and where the fibre runs beside the plane, the cut is a band of chords.
+constexpr double kSteepAngle = std::numbers::pi / 6;
+constexpr int kChordsPerElement = 16;  // chord samples per element (band cuts)
+
+// The chord of the section disc at s by the plane: the disc is c + a cos phi + b sin phi (a, b:
+// R g1, R g2), its points on the plane have a_n cos phi + b_n sin phi = -(c_n - value) (n: the
+// plane's axis), phi = psi +- acos(-h / rho) with rho = |(a_n, b_n)|, psi = atan2(b_n, a_n).
+// False where the disc does not reach the plane.
+bool chordAt(const FibreFrame& f, const std::vector<Index>& nodes, const CutPlane& plane,
+             double s, Vec3& plus, Vec3& minus) {
+  const Vec3 c = along(nodes, s, [&](Index n) { return f.x0[n]; });
+  const Vec3 a = along(nodes, s, [&](Index n) { return (f.radius[n] * f.g1[n]).eval(); });
+  const Vec3 b = along(nodes, s, [&](Index n) { return (f.radius[n] * f.g2[n]).eval(); });
+  const double h = c[plane.axis] - plane.value, rho = std::hypot(a[plane.axis], b[plane.axis]);
+  if (!(rho > 0) || std::abs(h) > rho) return false;
+  const double psi = std::atan2(b[plane.axis], a[plane.axis]), delta = std::acos(-h / rho);
+  plus = c + a * std::cos(psi + delta) + b * std::sin(psi + delta);
+  minus = c + a * std::cos(psi - delta) + b * std::sin(psi - delta);
+  plus[plane.axis] = minus[plane.axis] = plane.value;
+  return true;
+}
+
+// Where the disc starts to reach the plane between sOut (no chord) and sIn (a chord), by
+// bisection; the chord there is a point (the disc tangent to the plane).
+Vec3 tangency(const FibreFrame& f, const std::vector<Index>& nodes, const CutPlane& plane,
+              double sOut, double sIn) {
+  Vec3 p, m;
+  for (int k = 0; k < 40; ++k) {
+    const double mid = 0.5 * (sOut + sIn);
+    (chordAt(f, nodes, plane, mid, p, m) ? sIn : sOut) = mid;
+  }
+  chordAt(f, nodes, plane, sIn, p, m);
+  return 0.5 * (p + m);
+}
+
+// The centreline's crossings of the plane (node index + fraction) and whether each is steep.
+std::vector<std::pair<double, bool>> crossings(const FibreFrame& f, const std::vector<Index>& nodes,
+                                               const CutPlane& plane) {
+  std::vector<std::pair<double, bool>> out;
+  for (size_t i = 0; i + 1 < nodes.size(); ++i) {
+    const double a = f.x0[nodes[i]][plane.axis] - plane.value,
+                 b = f.x0[nodes[i + 1]][plane.axis] - plane.value;
+    if ((a < 0) == (b < 0)) continue;
+    const Vec3 t = f.x0[nodes[i + 1]] - f.x0[nodes[i]];
+    out.emplace_back(double(i) + a / (a - b), std::abs(t[plane.axis]) >= std::sin(kSteepAngle) * t.norm());
+  }
+  return out;
+}
+
+// The band cuts of one fibre: each run of s where its discs reach the plane, without a steep
+// crossing, is outlined by its chords' ends (one side forward, the other back), closed by the
+// tangency points where the run starts and ends inside the fibre (a fibre end closes it with
+// its end chord).
+void bandSections(const FibreFrame& f, Index fibre, const CutPlane& plane,
+                  const std::vector<std::pair<double, bool>>& cross,
+                  std::vector<SectionOutline>& out) {
+  const std::vector<Index>& nodes = f.fibres[fibre];
+  const int samples = kChordsPerElement * int(nodes.size() - 1);
+  const auto sOf = [&](int k) { return double(k) / kChordsPerElement; };
+  Vec3 p, m;
+  for (int k = 0; k <= samples;) {
+    if (!chordAt(f, nodes, plane, sOf(k), p, m)) {
+      ++k;
+      continue;
+    }
+    const int first = k;
+    std::vector<Vec3> side1, side2;
+    for (; k <= samples && chordAt(f, nodes, plane, sOf(k), p, m); ++k) {
+      side1.push_back(p);
+      side2.push_back(m);
+    }
+    const double s0 = sOf(first), s1 = sOf(k - 1);
+    bool steep = false;
+    for (const auto& [s, isSteep] : cross)
+      steep |= isSteep && s >= s0 - 1.0 / kChordsPerElement && s <= s1 + 1.0 / kChordsPerElement;
+    if (steep) continue;
+    SectionOutline o{fibre, 0.5 * (s0 + s1), along(nodes, 0.5 * (s0 + s1), [&](Index n) { return f.x0[n]; }), {}};
+    if (first > 0) o.points.push_back(tangency(f, nodes, plane, sOf(first - 1), s0));
+    o.points.insert(o.points.end(), side1.begin(), side1.end());
+    if (k <= samples) o.points.push_back(tangency(f, nodes, plane, sOf(k), s1));
+    o.points.insert(o.points.end(), side2.rbegin(), side2.rend());
+    o.centre[plane.axis] = plane.value;
+    if (o.points.size() >= 3) out.push_back(std::move(o));
+  }
+}
+
 const std::vector<double>& array(const VtuArrays& a, const std::string& key, size_t size) {
   const auto it = a.find(key);
   if (it == a.end()) throw std::runtime_error("VTU: no array " + key);
@@ -77,14 +164,13 @@ std::vector<SectionOutline> cutSections(const FibreFrame& f, const CutPlane& pla
   if (sides < 3) throw std::invalid_argument("cutSections: sides must be >= 3");
   std::vector<SectionOutline> out;
   for (Index fibre = 0; fibre < Index(f.fibres.size()); ++fibre) {
-    const std::vector<Index>& nodes = f.fibres[fibre];
-    for (size_t i = 0; i + 1 < nodes.size(); ++i) {
-      const double a = f.x0[nodes[i]][plane.axis] - plane.value,
-                   b = f.x0[nodes[i + 1]][plane.axis] - plane.value;
-      if ((a < 0) == (b < 0)) continue;
-      SectionOutline s = cutAt(f, fibre, plane, double(i) + a / (a - b), sides);
-      if (s.points.size() >= 3) out.push_back(std::move(s));
+    const std::vector<std::pair<double, bool>> cross = crossings(f, f.fibres[fibre], plane);
+    for (const auto& [s, steep] : cross) {
+      if (!steep) continue;
+      SectionOutline o = cutAt(f, fibre, plane, s, sides);
+      if (o.points.size() >= 3) out.push_back(std::move(o));
     }
+    bandSections(f, fibre, plane, cross, out);
   }
   return out;
 }

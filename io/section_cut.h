@@ -15,6 +15,11 @@
 // meets the plane, nearest to the centreline's crossing. The outline is those points, so
 // obliquity and the section's deformation both show. Rim lines that leave the fibre's end
 // before meeting the plane are skipped (an end face cut shows as a partial outline).
+// Where the centreline meets the plane at less than 30 deg, or runs beside it within R, the rim
+// lines meet the plane far from the crossing (or not at all): the cut is then drawn as the union
+// of the chords in which the plane cuts the section discs, sampled 16 per element, each run of s
+// whose discs reach the plane one band (a shallow crossing's long ellipse, a yarn lying along
+// the cut).
 #pragma once
 
 #include "core/types.h"
@@ -45,13 +50,16 @@ struct CutPlane {
 // The section of one fibre in the plane.
 struct SectionOutline {
   Index fibre = 0;           // index of the fibre in the frame
-  double s = 0;              // where its centreline crosses: node index + fraction
-  Vec3 centre;               // the centreline's crossing point, mm
-  std::vector<Vec3> points;  // the outline, in the plane, in order of phi, mm
+  double s = 0;              // where its centreline crosses (a band: the middle of its run),
+                             // node index + fraction
+  Vec3 centre;               // the centreline's crossing point (a band: the centreline at s,
+                             // projected on the plane), mm
+  std::vector<Vec3> points;  // the outline, in the plane, in order of phi (a band: one side's
+                             // chord ends along s, the other's back), mm
 };
 
-// Every fibre's sections by `plane` (a fibre crossing it several times has several), `sides`
-// outline points each (>= 3).
+// Every fibre's sections by `plane` (a fibre crossing it several times has several): `sides`
+// outline points each (>= 3) at steep crossings, the chord ends of its band otherwise.
 std::vector<SectionOutline> cutSections(const FibreFrame& frame, const CutPlane& plane,
                                         int sides = 48);
 

@@ -241,6 +241,37 @@ TEST_CASE("section: fibres that do not reach the plane have no section, a bent o
   CHECK(medianPlane(u, 0).value == doctest::Approx(0.5));
 }
 
+TEST_CASE("section: a fibre beside the plane is cut in a band, a shallow crossing in a long ellipse") {
+  // Along x, length 2 (straightFibre's span), at height d below the plane z = 0: every section
+  // disc meets it in a chord of half-length sqrt(R^2 - d^2), the band 2 sqrt(R^2 - d^2) wide.
+  const double R = 0.1, d = 0.06, half = std::sqrt(R * R - d * d);
+  const FibreFrame beside = straightFibre({0, 0, -d}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, R);
+  const std::vector<SectionOutline> band = cutSections(beside, CutPlane{2, 0.0});
+  REQUIRE(band.size() == 1);
+  double lo = 1e9, hi = -1e9;
+  for (const Vec3& p : band[0].points) {
+    CHECK(p.z() == 0.0);
+    CHECK(std::abs(p.y()) == doctest::Approx(half).epsilon(1e-12));
+    lo = std::min(lo, p.x()), hi = std::max(hi, p.x());
+  }
+  const double length = hi - lo;
+  CHECK(std::abs(shoelace(band[0].points, 0, 1)) == doctest::Approx(2 * half * length).epsilon(1e-12));
+  CHECK(cutSections(beside, CutPlane{2, -d - 1.01 * R}).empty());  // beyond its reach
+  // Through the plane at 10 deg: t = (cos a, 0, sin a), g1 = (-sin a, 0, cos a), g2 = y; the
+  // plane z = 0 cuts the ellipse of semi-axes R / sin a along x and R along y.
+  const double a = 10 * std::numbers::pi / 180;
+  const Vec3 t(std::cos(a), 0, std::sin(a)), g1(-std::sin(a), 0, std::cos(a)), g2(0, 1, 0);
+  const std::vector<SectionOutline> shallow =
+      cutSections(straightFibre(Vec3::Zero(), t, g1, g2, R), CutPlane{2, 0.0});
+  REQUIRE(shallow.size() == 1);
+  const double ax = R / std::sin(a);
+  for (const Vec3& p : shallow[0].points)
+    CHECK(std::pow(p.x() / ax, 2) + std::pow(p.y() / R, 2) == doctest::Approx(1).epsilon(1e-9));
+  // The chords sample the ellipse every 1/16 element along x: its area within 1%.
+  CHECK(std::abs(shoelace(shallow[0].points, 0, 1)) ==
+        doctest::Approx(std::numbers::pi * ax * R).epsilon(0.01));
+}
+
 TEST_CASE("section: a tool's surface quads are cut in segments, the fibres read from a VTU") {
   // Two quads: one across z = 0 (x from 0 to 2, z from -1 to 1), one above it.
   VtuArrays a;
