@@ -88,6 +88,9 @@ struct ContactElementStore {
   std::vector<double> theta;       // angle between the centreline tangents, rad, in [0, pi/2]
   std::vector<double> crossWeight; // weight of the crossing normal in the blend, in [0, 1]
   std::vector<std::uint8_t> fallback;  // ContactFallback bits
+  std::vector<std::uint8_t> crossing;  // 1: a point element placed at the closest points of two
+                                       // crossing centrelines; frictionless, its sections follow
+                                       // them in Newton (systems/crossing_follow.h)
   // the particles as weights on their elements' DOFs (systems/contact_particles.h)
   std::vector<ParticleWeights> sideI, sideJ;
   // friction reference (systems/friction_reference.h): the state the slip is measured from

@@ -14,6 +14,8 @@ struct IterationInput {
 // What the contact systems of one kind (fibre-fibre, fibre-tool) tell the nested loops.
 struct ContactLoopStats {
   double normalTurn = 0;     // rad: largest turn of a normal at the last normal update
+  double crossingShift = 0;  // mm: largest move of a crossing's section at the same update
+                             // (systems/crossing_follow.h; fibre-fibre only)
   double penaltyChange = 0;  // largest |k_new / k_old - 1| at the last penalty adaptation
   Index zonesAtCeiling = 0;  // zones held at the penalty ceiling deeper than p_max (same update)
 };

@@ -89,8 +89,9 @@ Index settleFriction(WorldState& w, ContactReport& report) {
 // normals (systems/normal_acceleration.h), whose history then goes on.
 constexpr double kSameSections = 1e-2;
 
-// Loop B: Newton with the elements fixed, then the normals at the new state, until they stop
-// turning or n_B passes. Every update is recorded by the mixer (contact `normal_acceleration`);
+// Loop B: Newton with the elements fixed, then the normals at the new state (frictionless
+// crossings' sections moved to the closest points first, systems/crossing_follow.h), until the
+// normals stop turning and the sections moving, or n_B passes. Every update is recorded by the mixer (contact `normal_acceleration`);
 // when it has a secant step (the map showed itself unstable), that replaces the update.
 // Linearised fibre normals (contact `normal_update` "newton") already are those of the
 // converged state: their update only records them (for the reports and the step limit), and
@@ -109,7 +110,9 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
     if (b == s.maxNormalLoops) break;
     runStage(w, w.pipeline.normals, tTry);
     const bool mixed = mixer.record(w.trial.elements);
-    if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance && switched == 0)
+    const bool moved = w.fibreStats.crossingShift > s.particleTolerance * minRadius(w.fibres);
+    if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance &&
+        switched == 0 && !moved)
       break;
     if (mixed) {
       mixer.apply(w.fibres, w.fibres.q, w.trial.elements);

@@ -91,6 +91,7 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.frictionFlips = def.frictionHoldAfter;
   p.frictionTolerance = def.frictionHoldTolerance;
   p.newtonNormals = def.normalUpdate == NormalUpdate::Newton;
+  p.followCrossings = def.followCrossings;
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h
   p.initialPenalty = def.initialPenalty;
   p.penaltyChange = def.penaltyChange;

@@ -12,6 +12,7 @@
 #include "systems/contact_normals.h"
 #include "systems/contact_particles.h"
 #include "systems/contact_scatter.h"
+#include "systems/crossing_follow.h"
 #include "systems/fibre_contact_law.h"
 #include "systems/friction_history.h"
 #include "systems/friction_reference.h"
@@ -98,6 +99,9 @@ void buildDetectAndReference(WorldState& w, TaskGraph& g) {
 
 void buildNormals(WorldState& w, TaskGraph& g) {
   ContactState& s = w.trial;
+  if (w.contact.fibres && w.contact.followCrossings)
+    g.add("crossing follow", followCrossings, w.fibres, w.contact, s.zones, s.elements,
+          w.fibreStats);
   if (w.contact.fibres)
     g.add("contact normals", updateNormalsAndGaps, w.fibres, w.fibres.q, w.contact, s.elements,
           w.fibreStats, w.def.trace);

@@ -274,8 +274,8 @@ Vec3 centrelineSecond(const FibreStore& fs, const CentrelineStore& cl, Index f, 
 // 0.65 p_max where the fibres overlapped by 9. Kept only when Newton converges inside both
 // widened intervals to a minimum (dF positive definite) and the fibres make more than
 // theta_parallel there (nearly parallel fibres have no well-posed closest pair); else the eq. 8
-// sections stay.
-void closestSections(const Intermediate& g, const Windows& w, double thetaParallel,
+// sections stay. True when they were moved.
+bool closestSections(const Intermediate& g, const Windows& w, double thetaParallel,
                      ElementSides& sides) {
   const FibreStore& fs = g.fs;
   const double h = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
@@ -287,19 +287,20 @@ void closestSections(const Intermediate& g, const Windows& w, double thetaParall
     const double a11 = tI.dot(tI) + d.dot(centrelineSecond(fs, g.cl, g.I, sI));
     const double a22 = tJ.dot(tJ) - d.dot(centrelineSecond(fs, g.cl, g.J, sJ));
     const double a12 = -tI.dot(tJ), det = a11 * a22 - a12 * a12;
-    if (!(a11 > 0 && det > 0)) return;  // not a minimum
+    if (!(a11 > 0 && det > 0)) return false;  // not a minimum
     const double f1 = d.dot(tI), f2 = -d.dot(tJ);
     const double dI = -(a22 * f1 - a12 * f2) / det, dJ = -(a11 * f2 - a12 * f1) / det;
     sI += dI, sJ += dJ;
-    if (!(sI >= w.aI && sI <= w.bI && sJ >= w.aJ && sJ <= w.bJ)) return;
+    if (!(sI >= w.aI && sI <= w.bI && sJ >= w.aJ && sJ <= w.bJ)) return false;
     if (std::abs(dI) + std::abs(dJ) <= 1e-10 * h) {
       const Vec3 uI = centrelineAt(fs, g.cl, g.I, sI).dxds.normalized();
       const Vec3 uJ = centrelineAt(fs, g.cl, g.J, sJ).dxds.normalized();
-      if (uI.cross(uJ).norm() <= std::sin(thetaParallel)) return;
+      if (uI.cross(uJ).norm() <= std::sin(thetaParallel)) return false;
       sides.sI = sI, sides.sJ = sJ;
-      return;
+      return true;
     }
   }
+  return false;
 }
 
 // The particles of eq. 9 (towards the other section's centre), or on an end face when one
@@ -352,7 +353,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   for (e = first; e < first + nc; ++e) {
     const double zeta = el.zeta[e];
     ElementSides sides = sectionsAt(g, zeta, windows, sep);
-    if (nc == 1 && g.I != g.J) closestSections(g, windows, p.thetaParallel, sides);
+    const bool closest = nc == 1 && g.I != g.J && closestSections(g, windows, p.thetaParallel, sides);
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];
@@ -381,6 +382,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.theta[e] = ng.theta;
     el.crossWeight[e] = ng.crossWeight;
     el.fallback[e] = flags | (ng.fallback ? kFallbackNormal : 0);
+    el.crossing[e] = closest && !forced && !(flags & (kEndFaceI | kEndFaceJ));
   }
 }
 
