@@ -1,15 +1,17 @@
 // The woven fabric's test loadings (paper section 5.2.2) on the reduced plain weave of
 // samples/fabric_biaxial.json and samples/fabric_shear.json (2 x 2 yarns of 3 fibres, 12
 // elements per fibre; scripts/fabric_loadings.py writes them): after the initial geometry
-// (forced normals, then the normal rules, frictionless), biaxial tension converges in every
-// increment with an edge force that rises with the strain from about the small end tensions,
-// within 3% of minus the sum of the reactions on the opposite edge; one shear cycle gives an edge
+// (forced normals, then the normal rules, frictionless) every crossing is in the pattern's order
+// with no overlap between yarns beyond p_max (from the nodes alone), biaxial tension converges
+// in every increment with an edge force that rises with the strain from about the small end
+// tensions, within 3% of minus the sum of the reactions on the opposite edge; one shear cycle gives an edge
 // force that changes sign with the displacement, and friction between the yarns dissipates
 // energy over the cycle (energy.friction of the energy balance), more with mu = 0.2 than 0.1 and
 // nothing frictionless.
 #include "engine/world.h"
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
+#include "weave_crossings.h"
 
 #include <doctest/doctest.h>
 
@@ -72,6 +74,15 @@ TEST_CASE("fabric loadings: reduced biaxial tension converges with a rising edge
   REQUIRE(w.scene().steps.size() == 3);
   const Index warpEnd = bcOn(w.scene(), "fab.warp.end"), weftEnd = bcOn(w.scene(), "fab.weft.end");
   runThrough(w, 1);  // the initial geometry: forced normals, the normal rules
+  // After it, measured from the nodes alone: every crossing in the pattern's order, no fibre of
+  // one yarn overlapping a fibre of a crossing yarn by more than p_max.
+  const Crossings m = measureCrossings(w, plainWeave(), {2, 1.5});
+  MESSAGE("after the initial geometry: largest overlap between yarns " << m.worstOverlap
+          << " mm (p_max " << w.scene().contact.maxPenetration << "), " << m.inOrder << " of "
+          << m.total << " crossings in the pattern's order");
+  CHECK(m.inOrder == m.total);
+  CHECK(m.total == 4);
+  CHECK(m.worstOverlap <= w.scene().contact.maxPenetration);
   // Zero strain: the edge force is about the small tensions of the force-controlled settle run
   // the fibres' starts are held at (scripts/fabric_loadings.py).
   const double f0 = w.reaction(warpEnd).force.x();
