@@ -17,7 +17,9 @@ namespace {
 constexpr double kInside = 1e-9;
 
 // Gauss-Newton on the element parameters (zI, zJ) towards the closest centreline points; false
-// when the fibres are within theta_parallel of each other there (no well-posed pair).
+// when the fibres are within theta_parallel of each other there (no well-posed pair), when the
+// closest points leave either element (the next detection finds them; the particle weights and
+// the matrix pattern are bound to these elements), or without convergence in 8 steps.
 bool closestInElements(const FibreStore& fs, const Eigen::VectorXd& q, Index eI, Index eJ,
                        double hI, double hJ, double sinParallel, double& zI, double& zJ) {
   for (int it = 0; it < 8; ++it) {
@@ -27,11 +29,11 @@ bool closestInElements(const FibreStore& fs, const Eigen::VectorXd& q, Index eI,
     if (tI.cross(tJ).norm() <= sinParallel * std::sqrt(a11 * a22)) return false;
     const double det = a11 * a22 - a12 * a12, f1 = d.dot(tI), f2 = -d.dot(tJ);
     const double dI = -(a22 * f1 - a12 * f2) / det, dJ = -(a11 * f2 - a12 * f1) / det;
-    zI = std::clamp(zI + dI, -1 + kInside, 1 - kInside);
-    zJ = std::clamp(zJ + dJ, -1 + kInside, 1 - kInside);
-    if (std::abs(dI) + std::abs(dJ) <= 1e-12) break;
+    zI += dI, zJ += dJ;
+    if (std::abs(zI) >= 1 - kInside || std::abs(zJ) >= 1 - kInside) return false;
+    if (std::abs(dI) + std::abs(dJ) <= 1e-12) return true;
   }
-  return true;
+  return false;
 }
 
 // Moves element e's sections; how far they moved (the larger of the two, mm).
