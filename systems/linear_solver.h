@@ -17,16 +17,28 @@
 //   K at hand, and the solve redone with up to `maxIterations`).
 //   sigma starts at 0 (a tenth of the last shift that worked) and grows by 100x up to 1.
 // - KrylovLu: the same, preconditioned by UMFPACK's LU of the full K (re-used likewise).
+// - Mumps: MUMPS 5.5's LU of the full K (sequential, systems/mumps_solver.h), or its LDL^T
+//   (symmetric indefinite) of a symmetric K; analysis when the pattern revision changes, numeric
+//   factorisation every call. With KrylovSettings::blrTolerance eps > 0 the factor is block
+//   low-rank at accuracy eps (approximate, cheaper) and the solve is GMRES on the true K,
+//   right-preconditioned by it, to KrylovSettings::tolerance (iterations in krylovIterations;
+//   refactorAbove does not apply: the factor is fresh every call). MUMPS errors (singular, out
+//   of memory after one retry with more workspace) return false with MUMPS's code.
 // - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
 //   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays);
 //   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
 // Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
-// METIS nested dissection from kMetisFromEquations equations and by AMD below, and leaves
-// CHOLMOD its default; amd or metis impose that one on both (measured: docs/RESULTS.md
-// "Orderings").
+// METIS nested dissection from kMetisFromEquations equations and by AMD below, MUMPS's by METIS
+// from kMumpsMetisFromEquations and by its own choice below, and leaves CHOLMOD its default;
+// amd or metis impose that one on all (measured: docs/RESULTS.md "Orderings", "MUMPS inside
+// fibra").
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
 // count is a process-wide setting: with setBlasThreads(n), every factorisation and solve first
 // sets it to n (the world passes its own thread count); 0 leaves it alone.
+// Determinism: the same K, b and OpenBLAS thread count give bitwise the same x with every
+// strategy (sequential factorisations; GMRES has no threads of its own). Across OpenBLAS thread
+// counts the dense kernels of CHOLMOD, UMFPACK and MUMPS may sum in another order: equal to
+// round-off, not guaranteed bitwise.
 // Trace spans (setTrace): "factorise" (items: equations), "solve" (items: right-hand sides) and
 // "krylov" (items: GMRES iterations), category "solver".
 #pragma once
@@ -64,8 +76,12 @@ inline constexpr Index kUmfpackFromEquations = 7000;
 // "Orderings": on frictional yarn tangents METIS factorises 1.25x faster than AMD at 16.8k
 // equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
 inline constexpr Index kMetisFromEquations = 12000;
+// The Mumps strategy's auto ordering: METIS (computed by CHOLMOD, given to MUMPS) from this many
+// equations, MUMPS's own automatic choice below (measured: docs/RESULTS.md "MUMPS inside fibra").
+inline constexpr Index kMumpsMetisFromEquations = 12000;
 
-// The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov").
+// The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov",
+// "krylov-lu", "mumps").
 const char* strategyName(LinearStrategy s);
 // Parses a name of strategyName; false when it is none.
 bool parseStrategy(const std::string& name, LinearStrategy& s);
