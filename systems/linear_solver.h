@@ -29,7 +29,7 @@
 //   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
 // Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
 // METIS nested dissection from kMetisFromEquations equations and by AMD below, MUMPS's by METIS
-// from kMumpsMetisFromEquations and by its own choice below, and leaves CHOLMOD its default;
+// from kMumpsMetisFromEquations and by AMD below, and leaves CHOLMOD its default;
 // amd or metis impose that one on all (measured: docs/RESULTS.md "Orderings", "MUMPS inside
 // fibra").
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
@@ -77,7 +77,7 @@ inline constexpr Index kUmfpackFromEquations = 7000;
 // equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
 inline constexpr Index kMetisFromEquations = 12000;
 // The Mumps strategy's auto ordering: METIS (computed by CHOLMOD, given to MUMPS) from this many
-// equations, MUMPS's own automatic choice below (measured: docs/RESULTS.md "MUMPS inside fibra").
+// equations, AMD below (measured: docs/RESULTS.md "MUMPS inside fibra").
 inline constexpr Index kMumpsMetisFromEquations = 12000;
 
 // The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov",

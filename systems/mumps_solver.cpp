@@ -2,11 +2,10 @@
 
 #include <cholmod.h>
 #include <dmumps_c.h>
+#include <stdio.h>  // scotch.h needs FILE
 
-#include <pthread.h>
-#include <sys/mman.h>
+#include <scotch.h>
 
-#include <functional>
 #include <vector>
 
 namespace fibra {
@@ -21,7 +20,7 @@ double& cntl(DMUMPS_STRUC_C& id, int k) { return id.cntl[k - 1]; }
 int infog(const DMUMPS_STRUC_C& id, int k) { return id.infog[k - 1]; }
 
 // MUMPS's orderings (ICNTL(7)).
-constexpr int kOrderAmd = 0, kOrderGiven = 1, kOrderAuto = 7;
+constexpr int kOrderAmd = 0, kOrderGiven = 1;
 
 // Silences MUMPS: no error, diagnostic, global or statistics output.
 void silence(DMUMPS_STRUC_C& id) {
@@ -61,32 +60,6 @@ std::vector<int> metisOrder(const SparseMatrix& A, bool upper) {
   }
   cholmod_finish(&common);
   return perm;
-}
-
-// Runs f on a thread whose stack is fresh (zero) memory. MUMPS 5.5's block low-rank clustering
-// (SEP_GROUPING -> MUMPS_SCOTCH_KWAY_MIXEDto32) builds a SCOTCH_Graph on its stack without
-// SCOTCH_graphInit; Scotch 7 then reads a context pointer from that uninitialised memory, null
-// (the default context) on fresh pages, a crash on stale ones. The stack is reserved, not
-// committed: only the pages MUMPS touches cost memory.
-void onFreshStack(const std::function<void()>& f) {
-  constexpr size_t kStack = size_t(256) << 20;
-  void* stack = mmap(nullptr, kStack, PROT_READ | PROT_WRITE,
-                     MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-  pthread_attr_t attr;
-  pthread_t thread;
-  bool ran = false;
-  if (stack != MAP_FAILED && pthread_attr_init(&attr) == 0) {
-    auto body = [](void* p) -> void* {
-      (*static_cast<const std::function<void()>*>(p))();
-      return nullptr;
-    };
-    if (pthread_attr_setstack(&attr, stack, kStack) == 0 &&
-        pthread_create(&thread, &attr, body, const_cast<std::function<void()>*>(&f)) == 0)
-      ran = pthread_join(thread, nullptr) == 0;
-    pthread_attr_destroy(&attr);
-  }
-  if (stack != MAP_FAILED) munmap(stack, kStack);
-  if (!ran) f();
 }
 
 }  // namespace
@@ -155,10 +128,7 @@ struct MumpsFactor::Impl {
   }
   bool run(int job, std::string& message) {
     id.job = job;
-    if (job == kJobAnalyse && icntl(id, 35) > 0)
-      onFreshStack([this] { dmumps_c(&id); });  // BLR clustering: see onFreshStack
-    else
-      dmumps_c(&id);
+    dmumps_c(&id);
     if (infog(id, 1) >= 0) return true;
     message = mumpsErrorMessage(infog(id, 1), infog(id, 2));
     return false;
@@ -184,8 +154,7 @@ bool MumpsFactor::analyse(const SparseMatrix& A, const MumpsAnalysis& how, std::
   const bool metis = how.ordering == Ordering::Metis || how.metisAuto;
   m.permIn = metis ? metisOrder(A, how.symmetric) : std::vector<int>{};
   m.id.perm_in = m.permIn.empty() ? nullptr : m.permIn.data();
-  icntl(m.id, 7) = !m.permIn.empty() ? kOrderGiven
-                   : how.ordering == Ordering::Amd ? kOrderAmd : kOrderAuto;
+  icntl(m.id, 7) = m.permIn.empty() ? kOrderAmd : kOrderGiven;
   icntl(m.id, 35) = how.blrTolerance > 0 ? 2 : 0;  // BLR in factorisation and solve
   cntl(m.id, 7) = how.blrTolerance;
   if (!m.run(kJobAnalyse, message)) return false;
@@ -231,3 +200,44 @@ void MumpsFactor::solve(Eigen::VectorXd& x) {
 int MumpsFactor::orderingUsed() const { return infog(impl_->id, 7); }
 
 }  // namespace fibra
+
+// Scotch's Fortran SCOTCHFGRAPHBUILD and SCOTCHFGRAPHPART, replaced for this process (the dynamic linker binds
+// MUMPS's call here: CMake exports the symbol, cmake/FibraDependencies.cmake). MUMPS 5.5's block
+// low-rank clustering (MUMPS_SCOTCH_KWAY_MIXEDto32, libmumps_common) builds a SCOTCH_Graph in
+// uninitialised stack memory without SCOTCH_graphInit; Scotch 7 reads flags and a context from
+// it, and stale stack contents crash the partition or corrupt the heap. Here the graph is
+// initialised first, then built as Scotch's own wrapper does: an array passed equal to another
+// means "absent" (vendtab = verttab + 1: compact; velotab, vlbltab = verttab; edlotab = edgetab).
+// The partition (the clusters of the BLR blocks) runs in a Scotch context of one thread,
+// deterministic, with its own generator seeded alike every call: Scotch's default (threads on
+// every core, a clock-seeded generator) clusters differently from run to run.
+extern "C" void scotchfgraphbuild_(SCOTCH_Graph* graph, const SCOTCH_Num* base,
+                                   const SCOTCH_Num* vertnbr, const SCOTCH_Num* verttab,
+                                   const SCOTCH_Num* vendtab, const SCOTCH_Num* velotab,
+                                   const SCOTCH_Num* vlbltab, const SCOTCH_Num* edgenbr,
+                                   const SCOTCH_Num* edgetab, const SCOTCH_Num* edlotab,
+                                   int* status) {
+  SCOTCH_graphInit(graph);
+  *status = SCOTCH_graphBuild(graph, *base, *vertnbr, verttab,
+                              vendtab == verttab + 1 ? nullptr : vendtab,
+                              velotab == verttab ? nullptr : velotab,
+                              vlbltab == verttab ? nullptr : vlbltab, *edgenbr, edgetab,
+                              edlotab == edgetab ? nullptr : edlotab);
+}
+
+extern "C" void scotchfgraphpart_(const SCOTCH_Graph* graph, const SCOTCH_Num* parts,
+                                  SCOTCH_Strat* strategy, SCOTCH_Num* parttab, int* status) {
+  SCOTCH_Context context;
+  SCOTCH_Graph bound;
+  SCOTCH_contextInit(&context);
+  SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMDETERMINISTIC, 1);
+  SCOTCH_contextOptionSetNum(&context, SCOTCH_OPTIONNUMRANDOMFIXEDSEED, 1);
+  SCOTCH_contextRandomClone(&context);
+  SCOTCH_contextRandomSeed(&context, 1);
+  SCOTCH_contextThreadSpawn(&context, 1, nullptr);
+  SCOTCH_graphInit(&bound);
+  *status = SCOTCH_contextBindGraph(&context, graph, &bound);
+  if (*status == 0) *status = SCOTCH_graphPart(&bound, *parts, strategy, parttab);
+  SCOTCH_graphExit(&bound);
+  SCOTCH_contextExit(&context);
+}

@@ -9,9 +9,10 @@
 //        factorisation.
 // Computes
 //   analyse:   the fill-reducing ordering and symbolic factorisation of A's pattern (job 1).
-//              Orderings (ICNTL(7)): AMD (0), MUMPS's own automatic choice (7), or METIS nested
-//              dissection of the pattern of A + A^T computed by CHOLMOD (cholmod_metis; Debian's
-//              MUMPS is built without METIS) and given to MUMPS as the pivot order (1).
+//              Orderings (ICNTL(7)): AMD (0), or METIS nested dissection of the pattern of
+//              A + A^T computed by CHOLMOD (cholmod_metis; Debian's MUMPS is built without
+//              METIS) and given to MUMPS as the pivot order (1). MUMPS's automatic choice is not
+//              offered: it may pick Scotch, whose threads order differently from run to run.
 //              With blrTolerance eps > 0 the factor is block low-rank (ICNTL(35) = 2,
 //              CNTL(7) = eps: off-diagonal blocks of the fronts compressed to relative accuracy
 //              eps), an approximate factor: A ~ L U with |A - L U| ~ eps |A|.
@@ -21,8 +22,11 @@
 // Errors (INFOG(1) < 0) return false with "MUMPS error <code>: <meaning>". MUMPS's printing is
 // off (ICNTL(1..4)).
 // Determinism: sequential MUMPS (no OpenMP in Debian's build) is deterministic for a given
-// input; its dense kernels are OpenBLAS's, bitwise reproducible for a fixed OpenBLAS thread
-// count. Across thread counts OpenBLAS may split sums differently (not guaranteed bitwise).
+// input once its one source of chance, Scotch's partition of the BLR clusters, runs on one
+// thread with a fixed seed (the Scotch wrappers at the end of mumps_solver.cpp, which also
+// initialise the graph MUMPS 5.5 leaves uninitialised); its dense kernels are OpenBLAS's,
+// bitwise reproducible for a fixed OpenBLAS thread count. Across thread counts OpenBLAS may
+// split sums differently (not guaranteed bitwise).
 #pragma once
 
 #include "components/linear_system.h"
@@ -37,7 +41,7 @@ namespace fibra {
 struct MumpsAnalysis {
   bool symmetric = false;     // A given as its upper triangle, factorised as LDL^T
   Ordering ordering = Ordering::Auto;
-  bool metisAuto = false;     // Ordering::Auto resolved to METIS (else MUMPS's own choice)
+  bool metisAuto = false;     // Ordering::Auto resolved to METIS (else AMD)
   double blrTolerance = 0;    // 0: exact factor; > 0: BLR at that relative accuracy
   Index revision = -1;        // pattern revision of A
   bool operator==(const MumpsAnalysis&) const = default;
