@@ -373,7 +373,7 @@ LinearStrategy LinearSolver::strategy() const { return impl_->strategy; }
 
 LinearStrategy LinearSolver::resolved(Index n) const {
   if (impl_->strategy != LinearStrategy::Auto) return impl_->strategy;
-  return n < kUmfpackFromEquations ? LinearStrategy::Direct : LinearStrategy::Umfpack;
+  return n < kMumpsFromEquations ? LinearStrategy::Direct : LinearStrategy::Mumps;
 }
 
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
@@ -382,16 +382,17 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   m.active = Active::None;
   const bool automatic = m.strategy == LinearStrategy::Auto;
   switch (resolved(ls.freeCount)) {
-    case LinearStrategy::Umfpack:
-      // auto: UMFPACK reports some large tangents singular that CHOLMOD or SparseLU factorise
-      // (the 250-fibre yarn's, docs/RESULTS.md); those fall back to the direct path.
-      if (m.umfpackLu(ls, message) || !automatic) return m.active != Active::None;
+    case LinearStrategy::Umfpack: return m.umfpackLu(ls, message);
+    case LinearStrategy::Mumps:
+      // auto: a tangent MUMPS cannot factorise (reported singular, out of memory) falls back to
+      // the direct path (as UMFPACK's singular reports on the 250-fibre yarn did,
+      // docs/RESULTS.md).
+      if (m.mumpsFactorise(ls, message) || !automatic) return m.active != Active::None;
       ++m.stats.fallbacks;
       message.clear();
       return m.direct(ls, message);
     case LinearStrategy::Krylov: return m.krylovFactorise(ls, message, false);
     case LinearStrategy::KrylovLu: return m.krylovFactorise(ls, message, true);
-    case LinearStrategy::Mumps: return m.mumpsFactorise(ls, message);
     default: return m.direct(ls, message);
   }
 }

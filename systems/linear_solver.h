@@ -24,9 +24,10 @@
 //   right-preconditioned by it, to KrylovSettings::tolerance (iterations in krylovIterations;
 //   refactorAbove does not apply: the factor is fresh every call). MUMPS errors (singular, out
 //   of memory after one retry with more workspace) return false with MUMPS's code.
-// - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
-//   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays);
-//   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
+// - Auto: Direct below kMumpsFromEquations equations, Mumps from there (measured rule:
+//   docs/RESULTS.md "MUMPS inside fibra"; on the contact tangents measured neither Krylov
+//   preconditioner pays); a tangent MUMPS fails on goes to Direct for that call (counted in
+//   fallbacks). Auto's Mumps follows KrylovSettings::blrTolerance (0 by default: exact).
 // Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
 // METIS nested dissection from kMetisFromEquations equations and by AMD below, MUMPS's by METIS
 // from kMumpsMetisFromEquations and by AMD below, and leaves CHOLMOD its default;
@@ -55,7 +56,7 @@ namespace fibra {
 struct LinearSolveStats {
   double analyse = 0, factorise = 0, solve = 0;  // seconds, accumulated (solve: with Krylov)
   int analyses = 0, factorisations = 0;
-  int fallbacks = 0;           // LL^T -> LDL^T (Direct), or UMFPACK -> Direct (Auto)
+  int fallbacks = 0;           // LL^T -> LDL^T (Direct), or MUMPS -> Direct (Auto)
   int solves = 0;              // right-hand sides solved
   // Krylov strategy
   int krylovIterations = 0;    // GMRES iterations, summed over solves
@@ -68,10 +69,14 @@ struct LinearSolveStats {
 };
 
 
-// Auto's rule: UMFPACK from this many equations (measured, docs/RESULTS.md: at 6.9k equations
-// SparseLU and UMFPACK factorise a frictional bundle tangent in the same time, at 16.8k UMFPACK
-// is 7x faster; frictionless tangents that are not positive definite favour UMFPACK earlier).
-inline constexpr Index kUmfpackFromEquations = 7000;
+// Auto's rule: MUMPS from this many equations, Direct below (measured, docs/RESULTS.md "MUMPS
+// inside fibra", analyse + factorise + solve, 1 thread: MUMPS against UMFPACK, the rule's
+// previous choice from 7 000, 2.09 against 2.12 s on the frictional 16.8k yarn tangent and
+// 47.2 against 48.1 s on the frictional 68.8k one (a tie), 1.43 against 2.41 s and 28.4
+// against 46.5 s on the frictionless ones (LDL^T); at 6.9k it beats Direct too (0.23 against
+// 0.26 s with friction, 0.16 against 0.44 s frictionless), but smaller systems were not
+// measured and Direct stays there).
+inline constexpr Index kMumpsFromEquations = 7000;
 // Auto ordering's rule: UMFPACK by METIS from this many equations (measured, docs/RESULTS.md
 // "Orderings": on frictional yarn tangents METIS factorises 1.25x faster than AMD at 16.8k
 // equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
@@ -94,8 +99,8 @@ class LinearSolver {
   LinearSolver& operator=(const LinearSolver&) = delete;
 
   // Prepares to solve with ls.K (factorises, or keeps a preconditioner); false (with a
-  // message) if K is singular. Krylov and Auto keep a pointer to ls: it must stay alive, and
-  // solve() uses the values of ls.K at the time of the solve.
+  // message) if K is singular. Krylov, Mumps and Auto keep a pointer to ls: it must stay
+  // alive, and solve() uses the values of ls.K at the time of the solve.
   bool factorise(const LinearSystem& ls, std::string& message);
   // x = K^-1 b (free DOFs, size freeCount); after a successful factorise.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);

@@ -132,6 +132,14 @@ TEST_CASE("the MUMPS strategy analyses once per pattern and repeats itself bitwi
   }
 }
 
+TEST_CASE("auto picks the direct path below kMumpsFromEquations and MUMPS from there") {
+  LinearSolver solver;
+  CHECK(solver.resolved(kMumpsFromEquations - 1) == LinearStrategy::Direct);
+  CHECK(solver.resolved(kMumpsFromEquations) == LinearStrategy::Mumps);
+  solver.setStrategy(LinearStrategy::Umfpack);
+  CHECK(solver.resolved(kMumpsFromEquations) == LinearStrategy::Umfpack);
+}
+
 TEST_CASE("the MUMPS strategy reports a singular tangent with MUMPS's error code") {
   // Equation 5's column and row zeroed: numerically singular. Non-symmetric (LU) and
   // symmetric (LDL^T) tangents.
