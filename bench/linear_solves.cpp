@@ -7,7 +7,10 @@
 //       [--friction on|off]
 //       [--strategy cholmod,direct,umfpack,krylov] [--threads 1,2] [--repeats 3]
 //       (a strategy may end in -amd or -metis for that ordering; also cholmod-metis and
-//       umfpack-best, UMFPACK trying several orderings and keeping the best)
+//       umfpack-best, UMFPACK trying several orderings and keeping the best; mumps-blr<eps>,
+//       e.g. mumps-blr1e-6, the mumps strategy with a block low-rank factor of accuracy eps
+//       inside GMRES (mumps-blr alone: 1e-6); mumps-full, mumps given a symmetric K in full,
+//       LU instead of LDL^T)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
 //       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
 //
@@ -62,7 +65,7 @@ struct Options : TangentCase {
 };
 
 void matrices(const Options& o, std::FILE* csv) {
-  std::printf("%-8s %3s %-8s %8s %10s %9s %9s %8s %6s %9s %8s %5s\n", "case", "thr", "strategy",
+  std::printf("%-8s %3s %-16s %8s %10s %9s %9s %8s %6s %9s %8s %5s\n", "case", "thr", "strategy",
               "dofs", "nonzeros", "assemble", "analyse", "factor", "solve", "krylov_it",
               "residual", "mem GiB");
   double assemble = 0;  // s per iteration, on the most threads asked
@@ -85,7 +88,7 @@ void matrices(const Options& o, std::FILE* csv) {
         return medianOf(v);
       };
       const Row& r0 = rows.front();
-      std::printf("%-8s %3d %-8s %8d %10ld %9.3f %9.3f %8.3f %6.3f %9d %8.1e %5.2f%s\n",
+      std::printf("%-8s %3d %-16s %8d %10ld %9.3f %9.3f %8.3f %6.3f %9d %8.1e %5.2f%s\n",
                   o.name.c_str(), threads, s.c_str(), int(ls.freeCount), long(ls.K.nonZeros()),
                   assemble, med(&Row::analyse), med(&Row::factorise), med(&Row::solve),
                   r0.iterations, med(&Row::residual), med(&Row::memory),

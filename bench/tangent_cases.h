@@ -115,13 +115,24 @@ inline SolveRow cholmodReference(const LinearSystem& ls, const Eigen::VectorXd& 
   return r;
 }
 
+// "mumps-blr<eps>" (e.g. "mumps-blr1e-6"; "mumps-blr" alone: 1e-6): the mumps strategy with
+// solver.blr_tolerance eps; "mumps-full": the mumps strategy given a symmetric K in full (LU,
+// MUMPS sym = 0, instead of its LDL^T). Writes the base strategy's name to `base`.
+inline void mumpsVariant(std::string& base, KrylovSettings& k, bool& full) {
+  if (base == "mumps-full") base = "mumps", full = true;
+  if (base.rfind("mumps-blr", 0) != 0) return;
+  const std::string eps = base.substr(9);
+  k.blrTolerance = eps.empty() ? 1e-6 : std::stod(eps);
+  base = "mumps";
+}
+
 // "cholmod" / "cholmod-metis" (the reference above) or a strategy of systems/linear_solver.h,
 // fresh solver; a strategy's name may end in "-amd" or "-metis" to impose that ordering
-// (solver.ordering; "umfpack-metis").
-inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls,
+// (solver.ordering; "umfpack-metis"); MUMPS's variants: mumpsVariant.
+inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls0,
                             const Eigen::VectorXd& b, int threads) {
   if (name == "cholmod" || name == "cholmod-metis")
-    return cholmodReference(ls, b, name != "cholmod");
+    return cholmodReference(ls0, b, name != "cholmod");
   std::string base = name;
   Ordering ordering = Ordering::Auto;
   for (const auto& [suffix, o] : {std::pair(std::string("-amd"), Ordering::Amd),
@@ -131,14 +142,24 @@ inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls,
       ordering = o;
     }
   }
+  KrylovSettings krylov;
+  bool full = false;
+  mumpsVariant(base, krylov, full);
   LinearStrategy s;
   if (!parseStrategy(base, s)) {
     std::fprintf(stderr, "unknown strategy %s\n", name.c_str());
     std::exit(2);
   }
+  LinearSystem copy;
+  if (full && ls0.symmetric) {
+    copy.K = SparseMatrix(ls0.K.selfadjointView<Eigen::Upper>());
+    copy.freeCount = ls0.freeCount, copy.symmetric = false, copy.revision = ls0.revision;
+  }
+  const LinearSystem& ls = full && ls0.symmetric ? copy : ls0;
   LinearSolver solver;
   solver.setStrategy(s);
   solver.setOrdering(ordering);
+  solver.setKrylov(krylov);
   solver.setBlasThreads(threads);
   std::string msg;
   SolveRow r;

@@ -496,6 +496,8 @@ void validateSolver(const SolverDef& s) {
   atLeast(s.krylov.restart, 1, "solver.krylov_restart");
   atLeast(s.krylov.maxIterations, 1, "solver.krylov_max_iterations");
   atLeast(s.krylov.refactorAbove, 1, "solver.refactor_above");
+  if (!(s.krylov.blrTolerance >= 0 && s.krylov.blrTolerance < 1))
+    fail("solver.blr_tolerance", "must be in [0, 1), got " + num(s.krylov.blrTolerance));
 }
 
 // Plots: the columns exist only once the World is built (io/plot_outputs.h checks them).

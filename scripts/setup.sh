@@ -12,7 +12,8 @@ build=${FIBRA_BUILD_DIR:-$here/build}
 jobs=${FIBRA_JOBS:-$(nproc)}
 
 packages=(build-essential cmake ninja-build ccache pkg-config
-          libeigen3-dev libtbb-dev libsuitesparse-dev libopenblas-dev
+          libeigen3-dev libtbb-dev libsuitesparse-dev libopenblas-dev libmumps-seq-dev
+          libscotch-dev
           doctest-dev nlohmann-json3-dev zlib1g-dev gnuplot-nox)
 if [ "${FIBRA_WITH_PETSC:-0}" = 1 ]; then
   packages+=(petsc-dev)

@@ -1,6 +1,7 @@
 #include "systems/linear_solver.h"
 
 #include "systems/krylov.h"
+#include "systems/mumps_solver.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseLU>
@@ -17,7 +18,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-enum class Active { None, Llt, Ldlt, Lu, Umfpack, Krylov };
+enum class Active { None, Llt, Ldlt, Lu, Umfpack, Krylov, Mumps, MumpsBlr };
 
 // The upper triangle of S = (K + K^T) / 2 (K full, CSC); for a symmetric ls, K itself.
 void symmetricPart(const LinearSystem& ls, SparseMatrix& S) {
@@ -77,13 +78,14 @@ const char* strategyName(LinearStrategy s) {
     case LinearStrategy::Umfpack: return "umfpack";
     case LinearStrategy::Krylov: return "krylov";
     case LinearStrategy::KrylovLu: return "krylov-lu";
+    case LinearStrategy::Mumps: return "mumps";
   }
   return "?";
 }
 
 bool parseStrategy(const std::string& name, LinearStrategy& s) {
   for (LinearStrategy c : {LinearStrategy::Auto, LinearStrategy::Direct, LinearStrategy::Umfpack,
-                           LinearStrategy::Krylov, LinearStrategy::KrylovLu})
+                           LinearStrategy::Krylov, LinearStrategy::KrylovLu, LinearStrategy::Mumps})
     if (name == strategyName(c)) {
       s = c;
       return true;
@@ -97,6 +99,7 @@ struct LinearSolver::Impl {
   Eigen::UmfPackLU<SparseMatrix> umfpack, umfpackFull;  // Direct's LU; the Umfpack strategy's
   Eigen::SparseLU<SparseMatrix> sparseLu;
   Preconditioner pre;
+  MumpsFactor mumps;
   GmresWorkspace workspace;
   KrylovSettings krylov;
   LuSolver luKind = LuSolver::EigenSparseLu;
@@ -151,7 +154,10 @@ struct LinearSolver::Impl {
   int reuseLimit() const;
   bool krylovFactorise(const LinearSystem& ls, std::string& message, bool lu);
   void krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  GmresResult gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit);
+  GmresResult gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit,
+                        const LinearOperator& M);
+  bool mumpsFactorise(const LinearSystem& ls, std::string& message);
+  void mumpsSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
 };
 
 bool LinearSolver::Impl::direct(const LinearSystem& ls, std::string& message) {
@@ -256,20 +262,15 @@ bool LinearSolver::Impl::krylovFactorise(const LinearSystem& ls, std::string& me
   return true;
 }
 
-// GMRES with the factor at hand, at most `limit` iterations.
-GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit) {
+// GMRES on the true K of `system`, right-preconditioned by M, at most `limit` iterations.
+GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::VectorXd& x, int limit,
+                                          const LinearOperator& M) {
   const LinearSystem& ls = *system;
   const LinearOperator A = [&ls](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
     if (ls.symmetric)
       y.noalias() = ls.K.selfadjointView<Eigen::Upper>() * v;
     else
       y.noalias() = ls.K * v;
-  };
-  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
-    if (pre.lu)
-      y = pre.umf.solve(v);
-    else
-      y = pre.llt.solve(v);
   };
   GmresSettings g;
   g.tolerance = krylov.tolerance;
@@ -292,14 +293,62 @@ int LinearSolver::Impl::reuseLimit() const { return std::min(krylov.refactorAbov
 // iterations than a new one; the solve is then redone with a fresh factor, up to
 // maxIterations.
 void LinearSolver::Impl::krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
-  GmresResult r = gmresOnce(b, x, pre.fresh ? krylov.maxIterations : reuseLimit());
+  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    if (pre.lu)
+      y = pre.umf.solve(v);
+    else
+      y = pre.llt.solve(v);
+  };
+  GmresResult r = gmresOnce(b, x, pre.fresh ? krylov.maxIterations : reuseLimit(), M);
   if (!r.converged && !pre.fresh) {
     std::string message;
     ++stats.refactorisations;
-    if (factorisePreconditioner(*system, message)) r = gmresOnce(b, x, krylov.maxIterations);
+    if (factorisePreconditioner(*system, message)) r = gmresOnce(b, x, krylov.maxIterations, M);
   }
   if (!r.converged) ++stats.krylovFailures;
   if (!r.converged || r.iterations > krylov.refactorAbove) pre.stale = true;
+}
+
+// MUMPS: analysis when the pattern revision (or symmetry, ordering, BLR) changes, numeric
+// factorisation every call (a factor does not survive a Newton iteration on the contact
+// tangents: docs/RESULTS.md "PETSc", re-used factor).
+bool LinearSolver::Impl::mumpsFactorise(const LinearSystem& ls, std::string& message) {
+  system = &ls;
+  const Index n = ls.freeCount;
+  const MumpsAnalysis how{.symmetric = ls.symmetric, .ordering = ordering,
+                          .metisAuto = ordering == Ordering::Auto && n >= kMumpsMetisFromEquations,
+                          .blrTolerance = krylov.blrTolerance, .revision = ls.revision};
+  if (mumps.needsAnalysis(how)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = mumps.analyse(ls.K, how, message);
+    stats.analyse += seconds(t0);
+    ++stats.analyses;
+    if (!ok) return false;
+  }
+  Span span(trace, "factorise", "solver");
+  span.items(n);
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool ok = mumps.factorise(ls.K, message);
+  stats.factorise += seconds(t0);
+  ++stats.factorisations;
+  if (!ok) return false;
+  active = krylov.blrTolerance > 0 ? Active::MumpsBlr : Active::Mumps;
+  return true;
+}
+
+// Exact factor: x = (LU)^-1 b. BLR factor: GMRES on the true K to krylov.tolerance, the factor
+// as its right preconditioner.
+void LinearSolver::Impl::mumpsSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  if (active == Active::Mumps) {
+    x = b;
+    mumps.solve(x);
+    return;
+  }
+  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) {
+    y = v;
+    mumps.solve(y);
+  };
+  if (!gmresOnce(b, x, krylov.maxIterations, M).converged) ++stats.krylovFailures;
 }
 
 LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
@@ -324,7 +373,7 @@ LinearStrategy LinearSolver::strategy() const { return impl_->strategy; }
 
 LinearStrategy LinearSolver::resolved(Index n) const {
   if (impl_->strategy != LinearStrategy::Auto) return impl_->strategy;
-  return n < kUmfpackFromEquations ? LinearStrategy::Direct : LinearStrategy::Umfpack;
+  return n < kMumpsFromEquations ? LinearStrategy::Direct : LinearStrategy::Mumps;
 }
 
 bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
@@ -333,10 +382,12 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   m.active = Active::None;
   const bool automatic = m.strategy == LinearStrategy::Auto;
   switch (resolved(ls.freeCount)) {
-    case LinearStrategy::Umfpack:
-      // auto: UMFPACK reports some large tangents singular that CHOLMOD or SparseLU factorise
-      // (the 250-fibre yarn's, docs/RESULTS.md); those fall back to the direct path.
-      if (m.umfpackLu(ls, message) || !automatic) return m.active != Active::None;
+    case LinearStrategy::Umfpack: return m.umfpackLu(ls, message);
+    case LinearStrategy::Mumps:
+      // auto: a tangent MUMPS cannot factorise (reported singular, out of memory) falls back to
+      // the direct path (as UMFPACK's singular reports on the 250-fibre yarn did,
+      // docs/RESULTS.md).
+      if (m.mumpsFactorise(ls, message) || !automatic) return m.active != Active::None;
       ++m.stats.fallbacks;
       message.clear();
       return m.direct(ls, message);
@@ -363,6 +414,8 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
       break;
     case Active::Umfpack: x = m.umfpackFull.solve(b); break;
     case Active::Krylov: m.krylovSolve(b, x); break;
+    case Active::Mumps:
+    case Active::MumpsBlr: m.mumpsSolve(b, x); break;
     case Active::None: x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN()); break;
   }
   m.stats.solve += seconds(t0);

@@ -17,16 +17,29 @@
 //   K at hand, and the solve redone with up to `maxIterations`).
 //   sigma starts at 0 (a tenth of the last shift that worked) and grows by 100x up to 1.
 // - KrylovLu: the same, preconditioned by UMFPACK's LU of the full K (re-used likewise).
-// - Auto: Direct below kUmfpackFromEquations equations, Umfpack from there (measured rule:
-//   docs/RESULTS.md; on the contact tangents measured neither Krylov preconditioner pays);
-//   a tangent UMFPACK reports singular goes to Direct for that call (counted in fallbacks).
+// - Mumps: MUMPS 5.5's LU of the full K (sequential, systems/mumps_solver.h), or its LDL^T
+//   (symmetric indefinite) of a symmetric K; analysis when the pattern revision changes, numeric
+//   factorisation every call. With KrylovSettings::blrTolerance eps > 0 the factor is block
+//   low-rank at accuracy eps (approximate, cheaper) and the solve is GMRES on the true K,
+//   right-preconditioned by it, to KrylovSettings::tolerance (iterations in krylovIterations;
+//   refactorAbove does not apply: the factor is fresh every call). MUMPS errors (singular, out
+//   of memory after one retry with more workspace) return false with MUMPS's code.
+// - Auto: Direct below kMumpsFromEquations equations, Mumps from there (measured rule:
+//   docs/RESULTS.md "MUMPS inside fibra"; on the contact tangents measured neither Krylov
+//   preconditioner pays); a tangent MUMPS fails on goes to Direct for that call (counted in
+//   fallbacks). Auto's Mumps follows KrylovSettings::blrTolerance (0 by default: exact).
 // Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
-// METIS nested dissection from kMetisFromEquations equations and by AMD below, and leaves
-// CHOLMOD its default; amd or metis impose that one on both (measured: docs/RESULTS.md
-// "Orderings").
+// METIS nested dissection from kMetisFromEquations equations and by AMD below, MUMPS's by METIS
+// from kMumpsMetisFromEquations and by AMD below, and leaves CHOLMOD its default;
+// amd or metis impose that one on all (measured: docs/RESULTS.md "Orderings", "MUMPS inside
+// fibra").
 // Time is spent in BLAS: link OpenBLAS (reference BLAS is ~17x slower here). OpenBLAS's thread
 // count is a process-wide setting: with setBlasThreads(n), every factorisation and solve first
 // sets it to n (the world passes its own thread count); 0 leaves it alone.
+// Determinism: the same K, b and OpenBLAS thread count give bitwise the same x with every
+// strategy (sequential factorisations; GMRES has no threads of its own). Across OpenBLAS thread
+// counts the dense kernels of CHOLMOD, UMFPACK and MUMPS may sum in another order: equal to
+// round-off, not guaranteed bitwise.
 // Trace spans (setTrace): "factorise" (items: equations), "solve" (items: right-hand sides) and
 // "krylov" (items: GMRES iterations), category "solver".
 #pragma once
@@ -43,7 +56,7 @@ namespace fibra {
 struct LinearSolveStats {
   double analyse = 0, factorise = 0, solve = 0;  // seconds, accumulated (solve: with Krylov)
   int analyses = 0, factorisations = 0;
-  int fallbacks = 0;           // LL^T -> LDL^T (Direct), or UMFPACK -> Direct (Auto)
+  int fallbacks = 0;           // LL^T -> LDL^T (Direct), or MUMPS -> Direct (Auto)
   int solves = 0;              // right-hand sides solved
   // Krylov strategy
   int krylovIterations = 0;    // GMRES iterations, summed over solves
@@ -56,16 +69,24 @@ struct LinearSolveStats {
 };
 
 
-// Auto's rule: UMFPACK from this many equations (measured, docs/RESULTS.md: at 6.9k equations
-// SparseLU and UMFPACK factorise a frictional bundle tangent in the same time, at 16.8k UMFPACK
-// is 7x faster; frictionless tangents that are not positive definite favour UMFPACK earlier).
-inline constexpr Index kUmfpackFromEquations = 7000;
+// Auto's rule: MUMPS from this many equations, Direct below (measured, docs/RESULTS.md "MUMPS
+// inside fibra", analyse + factorise + solve, 1 thread: MUMPS against UMFPACK, the rule's
+// previous choice from 7 000, 2.09 against 2.12 s on the frictional 16.8k yarn tangent and
+// 47.2 against 48.1 s on the frictional 68.8k one (a tie), 1.43 against 2.41 s and 28.4
+// against 46.5 s on the frictionless ones (LDL^T); at 6.9k it beats Direct too (0.23 against
+// 0.26 s with friction, 0.16 against 0.44 s frictionless), but smaller systems were not
+// measured and Direct stays there).
+inline constexpr Index kMumpsFromEquations = 7000;
 // Auto ordering's rule: UMFPACK by METIS from this many equations (measured, docs/RESULTS.md
 // "Orderings": on frictional yarn tangents METIS factorises 1.25x faster than AMD at 16.8k
 // equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
 inline constexpr Index kMetisFromEquations = 12000;
+// The Mumps strategy's auto ordering: METIS (computed by CHOLMOD, given to MUMPS) from this many
+// equations, AMD below (measured: docs/RESULTS.md "MUMPS inside fibra").
+inline constexpr Index kMumpsMetisFromEquations = 12000;
 
-// The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov").
+// The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov",
+// "krylov-lu", "mumps").
 const char* strategyName(LinearStrategy s);
 // Parses a name of strategyName; false when it is none.
 bool parseStrategy(const std::string& name, LinearStrategy& s);
@@ -78,8 +99,8 @@ class LinearSolver {
   LinearSolver& operator=(const LinearSolver&) = delete;
 
   // Prepares to solve with ls.K (factorises, or keeps a preconditioner); false (with a
-  // message) if K is singular. Krylov and Auto keep a pointer to ls: it must stay alive, and
-  // solve() uses the values of ls.K at the time of the solve.
+  // message) if K is singular. Krylov, Mumps and Auto keep a pointer to ls: it must stay
+  // alive, and solve() uses the values of ls.K at the time of the solve.
   bool factorise(const LinearSystem& ls, std::string& message);
   // x = K^-1 b (free DOFs, size freeCount); after a successful factorise.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);

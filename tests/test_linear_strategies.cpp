@@ -5,7 +5,8 @@
 // positive definite and still solves the true (indefinite) K; a squeezed 7-fibre bundle reaches
 // the same final state with every strategy, deterministically for a thread count; the scene's
 // `solver` section is read and checked with field-named errors. Every strategy is run with
-// each fill-reducing ordering (auto, AMD, METIS).
+// each fill-reducing ordering (auto, AMD, METIS); MUMPS also with a block low-rank factor inside
+// GMRES, reports a singular tangent with its error code, and repeats itself bitwise.
 #include "bench/contact_scenes.h"
 #include "engine/world_state.h"
 #include "io/scene_loader.h"
@@ -20,7 +21,8 @@ using namespace fibra;
 namespace {
 
 constexpr LinearStrategy kStrategies[] = {LinearStrategy::Direct, LinearStrategy::Umfpack,
-                                          LinearStrategy::Krylov, LinearStrategy::KrylovLu};
+                                          LinearStrategy::Krylov, LinearStrategy::KrylovLu,
+                                          LinearStrategy::Mumps};
 
 // A 7-fibre bundle after its first converged squeeze increment, with the tangent Newton last
 // assembled (at the converged state).
@@ -82,7 +84,85 @@ TEST_CASE("every linear strategy solves a frictional and a frictionless contact 
         // Krylov: its own tolerance; the direct factorisations: their round-off, well below it.
         CHECK(res <= KrylovSettings{}.tolerance);
         if (s == LinearStrategy::Krylov) CHECK(solver.stats().krylovIterations > 0);
+        if (s == LinearStrategy::Mumps) CHECK(solver.stats().krylovIterations == 0);
       }
+    // MUMPS with a block low-rank factor (a coarse 1e-2, so that it is approximate): GMRES on
+    // the true K reaches the Krylov tolerance.
+    for (Ordering o : {Ordering::Auto, Ordering::Amd, Ordering::Metis}) {
+      CAPTURE(mu);
+      CAPTURE(int(o));
+      LinearSolver solver;
+      solver.setOrdering(o);
+      solver.setKrylov({.blrTolerance = 1e-2});
+      CHECK(solveWith(LinearStrategy::Mumps, ls, b, solver) <= KrylovSettings{}.tolerance);
+      CHECK(solver.stats().krylovIterations >= 1);
+      CHECK(solver.stats().krylovFailures == 0);
+    }
+  }
+}
+
+TEST_CASE("the MUMPS strategy analyses once per pattern and repeats itself bitwise") {
+  for (double blr : {0.0, 1e-2}) {
+    CAPTURE(blr);
+    auto w = squeezedBundle(0.1);
+    const LinearSystem& ls = w->system;
+    const Eigen::VectorXd b = randomVector(ls.freeCount, 13);
+    LinearSolver solver, other;
+    solver.setKrylov({.blrTolerance = blr});
+    other.setKrylov({.blrTolerance = blr});
+    std::vector<Eigen::VectorXd> x(3);
+    std::string message;
+    for (int k = 0; k < 2; ++k) {
+      solver.setStrategy(LinearStrategy::Mumps);
+      REQUIRE(solver.factorise(ls, message));
+      solver.solve(b, x[k]);
+    }
+    other.setStrategy(LinearStrategy::Mumps);
+    REQUIRE(other.factorise(ls, message));
+    other.solve(b, x[2]);
+    CHECK(solver.stats().analyses == 1);
+    CHECK(solver.stats().factorisations == 2);
+    CHECK(solver.stats().solves == 2);
+    CHECK(x[0] == x[1]);  // bitwise: the same solver twice, and a fresh one
+    CHECK(x[0] == x[2]);
+    // Another BLR tolerance (or none) is another analysis.
+    solver.setKrylov({.blrTolerance = blr > 0 ? 0 : 1e-2});
+    REQUIRE(solver.factorise(ls, message));
+    CHECK(solver.stats().analyses == 2);
+  }
+}
+
+TEST_CASE("auto picks the direct path below kMumpsFromEquations and MUMPS from there") {
+  LinearSolver solver;
+  CHECK(solver.resolved(kMumpsFromEquations - 1) == LinearStrategy::Direct);
+  CHECK(solver.resolved(kMumpsFromEquations) == LinearStrategy::Mumps);
+  solver.setStrategy(LinearStrategy::Umfpack);
+  CHECK(solver.resolved(kMumpsFromEquations) == LinearStrategy::Umfpack);
+}
+
+TEST_CASE("the MUMPS strategy reports a singular tangent with MUMPS's error code") {
+  // Equation 5's column and row zeroed: numerically singular. Non-symmetric (LU) and
+  // symmetric (LDL^T) tangents.
+  for (NormalUpdate update : {NormalUpdate::Newton, NormalUpdate::Loop}) {
+    auto w = squeezedBundle(0, update);
+    LinearSystem ls = w->system;
+    for (Index j = 0; j < ls.K.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(ls.K, j); it; ++it)
+        if (it.row() == 5 || j == 5) it.valueRef() = 0;
+    for (double blr : {0.0, 1e-2}) {
+      CAPTURE(ls.symmetric);
+      CAPTURE(blr);
+      LinearSolver solver;
+      solver.setStrategy(LinearStrategy::Mumps);
+      solver.setKrylov({.blrTolerance = blr});
+      std::string message;
+      CHECK_FALSE(solver.factorise(ls, message));
+      CHECK(message.find("MUMPS error -") == 0);
+      CHECK(message.find("singular") != std::string::npos);
+      // The solver stays usable: the intact tangent factorises.
+      CHECK(solveWith(LinearStrategy::Mumps, w->system, randomVector(ls.freeCount, 1), solver) <=
+            KrylovSettings{}.tolerance);
+    }
   }
 }
 
@@ -206,7 +286,8 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   };
   const SceneDef s = loadSceneFromString(
       scene(R"({"strategy": "krylov", "ordering": "metis", "krylov_tolerance": 1e-9,
-                "krylov_restart": 30, "krylov_max_iterations": 100, "refactor_above": 25})"),
+                "krylov_restart": 30, "krylov_max_iterations": 100, "refactor_above": 25,
+                "blr_tolerance": 1e-6})"),
       "s.json");
   CHECK(s.solver.strategy == LinearStrategy::Krylov);
   CHECK(s.solver.ordering == Ordering::Metis);
@@ -214,6 +295,10 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(s.solver.krylov.restart == 30);
   CHECK(s.solver.krylov.maxIterations == 100);
   CHECK(s.solver.krylov.refactorAbove == 25);
+  CHECK(s.solver.krylov.blrTolerance == 1e-6);
+  CHECK(loadSceneFromString(scene(R"({"strategy": "mumps"})"), "s.json").solver.strategy ==
+        LinearStrategy::Mumps);
+  CHECK(loadSceneFromString(scene("{}"), "s.json").solver.krylov.blrTolerance == 0);
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.strategy == LinearStrategy::Auto);
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.ordering == Ordering::Auto);
   auto error = [&](const std::string& solver) {
@@ -221,12 +306,14 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   };
   CHECK(error(R"({"strategy": "cg"})") ==
         "s.json: solver.strategy: unknown value \"cg\" (expected one of: auto, direct, umfpack, "
-        "krylov, krylov-lu)");
+        "krylov, krylov-lu, mumps)");
   CHECK(error(R"({"ordering": "colamd"})") ==
         "s.json: solver.ordering: unknown value \"colamd\" (expected one of: auto, amd, metis)");
   CHECK(error(R"({"krylov_tolerance": 0})") == "s.json: solver.krylov_tolerance: must be in (0, 1), got 0");
   CHECK(error(R"({"krylov_restart": 0})") == "s.json: solver.krylov_restart: must be >= 1, got 0");
   CHECK(error(R"({"refactor_above": 0})") == "s.json: solver.refactor_above: must be >= 1, got 0");
+  CHECK(error(R"({"blr_tolerance": -1e-6})") ==
+        "s.json: solver.blr_tolerance: must be in [0, 1), got -1e-06");
 }
 
 TEST_CASE("the linear solver's spans appear in the trace with their counts") {
