@@ -82,8 +82,8 @@ struct ContactParams {
   bool newtonNormals = false;   // fibre-fibre normals follow the state inside Newton, linearised
                                 // (systems/normal_linearisation.h); false: fixed per pass, loop B
   bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
-  bool followCrossings = true;  // frictionless crossings' sections follow the closest points in
-                                // Newton (systems/crossing_follow.h)
+  bool followCrossings = false; // frictionless crossings' sections follow the closest points in
+                                // loop B (systems/crossing_follow.h)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
                                 // systems/tool_detection.h)
 

@@ -226,8 +226,8 @@ struct ContactDef {
   NormalUpdate normalUpdate = NormalUpdate::Loop;
   int normalAcceleration = 3;         // Anderson memory of loop B on the normals, passes (0: the
                                       // plain update; <= 10)
-  bool followCrossings = true;        // frictionless crossings' sections follow the closest
-                                      // points in Newton (systems/crossing_follow.h)
+  bool followCrossings = false;       // frictionless crossings' sections follow the closest
+                                      // points in loop B (systems/crossing_follow.h)
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

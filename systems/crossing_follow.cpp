@@ -15,14 +15,19 @@ namespace {
 
 // Element parameters stay this far inside [-1, 1]: the arc length maps back to the same element.
 constexpr double kInside = 1e-9;
+// Gauss-Newton steps at most. Without the curvature terms it converges linearly, at a rate of
+// about |d| / rho (centre distance over the centrelines' radius of curvature): 0.045 per step
+// on the crimped plain weave, whose crossings then need 6-7 steps to 1e-10.
+constexpr int kSteps = 20;
 
 // Gauss-Newton on the element parameters (zI, zJ) towards the closest centreline points; false
 // when the fibres are within theta_parallel of each other there (no well-posed pair), when the
 // closest points leave either element (the next detection finds them; the particle weights and
-// the matrix pattern are bound to these elements), or without convergence in 8 steps.
+// the matrix pattern are bound to these elements), or without convergence (steps in z summing
+// to <= 1e-10) in kSteps steps.
 bool closestInElements(const FibreStore& fs, const Eigen::VectorXd& q, Index eI, Index eJ,
                        double hI, double hJ, double sinParallel, double& zI, double& zJ) {
-  for (int it = 0; it < 8; ++it) {
+  for (int it = 0; it < kSteps; ++it) {
     const Section I = sectionAt(fs, q, {eI, zI}), J = sectionAt(fs, q, {eJ, zJ});
     const Vec3 tI = 0.5 * hI * I.dx0ds, tJ = 0.5 * hJ * J.dx0ds, d = I.x0 - J.x0;
     const double a11 = tI.dot(tI), a22 = tJ.dot(tJ), a12 = -tI.dot(tJ);
@@ -31,7 +36,7 @@ bool closestInElements(const FibreStore& fs, const Eigen::VectorXd& q, Index eI,
     const double dI = -(a22 * f1 - a12 * f2) / det, dJ = -(a11 * f2 - a12 * f1) / det;
     zI += dI, zJ += dJ;
     if (std::abs(zI) >= 1 - kInside || std::abs(zJ) >= 1 - kInside) return false;
-    if (std::abs(dI) + std::abs(dJ) <= 1e-12) return true;
+    if (std::abs(dI) + std::abs(dJ) <= 1e-10) return true;
   }
   return false;
 }

@@ -14,12 +14,15 @@
 // two crossing centrelines, systems/contact_elements.h) whose zone is frictionless (mu x the
 // step's friction factor = 0), the local minimum of |x0I(sI) - x0J(sJ)| by Gauss-Newton on
 //   F = [d . tI, -d . tJ] = 0,  d = x0I - x0J,  t = dx0/dz,
-//   A = [[tI . tI, -tI . tJ], [-tI . tJ, tJ . tJ]]  (the curvature terms d . x'' dropped: d is
-// a gap, far smaller than the radii of curvature), and the particles of eq. 9 (towards the other
-// section's centre) there. Only within the elements the sections were detected in (their
+//   A = [[tI . tI, -tI . tJ], [-tI . tJ, tJ . tJ]]  (the curvature terms d . x'' dropped: |d|,
+// about R_I + R_J, is far smaller than the centrelines' radii of curvature, so the iteration
+// converges linearly at a rate of about |d| / rho), and the particles of eq. 9 (towards the
+// other section's centre) there. Only within the elements the sections were detected in (their
 // particle weights and the linear system's pattern stay): closest points that leave them, or no
-// convergence in 8 steps, leave the element as it is for the next detection. Fibres within theta_parallel of each other
-// have no well-posed closest pair: their elements stay.
+// convergence in 20 steps, leave the element as it is for the next detection. Fibres within
+// theta_parallel of each other have no well-posed closest pair: their elements stay.
+// Off unless the scene asks (contact.follow_crossings; docs/CONTACT.md "Crossings that follow":
+// the frictionless plain biaxial tension fails with it).
 // Why: a frictionless crossing slides while Newton solves; the detected material points then
 // drift from the closest points, and the force acts where the fibres no longer are closest (a
 // woven twill's settle kept overlaps of 1.16 p_max where its elements reported 0.86;

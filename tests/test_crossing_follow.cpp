@@ -43,6 +43,7 @@ void translate(FibreStore& fs, Index f, const Vec3& v) {
 
 ContactParams followParams() {
   ContactParams p;
+  p.followCrossings = true;
   p.thetaParallel = 5 * std::numbers::pi / 180;
   return p;
 }
@@ -118,7 +119,7 @@ TEST_CASE("crossing follow: frictional crossings and the option off keep their m
   CHECK(el.sI == c.contact.elements.sI);
 }
 
-TEST_CASE("crossing follow: contact.follow_crossings is read, true by default, and must be a boolean") {
+TEST_CASE("crossing follow: contact.follow_crossings is read, false by default, and must be a boolean") {
   const auto scene = [](const std::string& follow) {
     return R"({"units": "mm-N-MPa", "materials": [{"name": "m", "young_modulus": 1000}],
       "fibres": [{"name": "a", "material": "m", "radius": 0.1, "elements": 2,
@@ -126,8 +127,8 @@ TEST_CASE("crossing follow: contact.follow_crossings is read, true by default, a
       "boundary_conditions": [{"type": "clamp", "group": "a.start"}],
       "contact": {"max_penetration": 1e-3)" + follow + "}, \"steps\": [{}]}";
   };
-  CHECK(loadSceneFromString(scene(""), "s.json").contact.followCrossings);
-  CHECK(!loadSceneFromString(scene(R"(, "follow_crossings": false)"), "s.json").contact.followCrossings);
+  CHECK(!loadSceneFromString(scene(""), "s.json").contact.followCrossings);
+  CHECK(loadSceneFromString(scene(R"(, "follow_crossings": true)"), "s.json").contact.followCrossings);
   const std::string error =
       errorOf([&] { loadSceneFromString(scene(R"(, "follow_crossings": "yes")"), "s.json"); });
   CHECK(error.find("s.json") != std::string::npos);

@@ -127,7 +127,9 @@ struct ShearCycle {
 ShearCycle shearCycle(SceneDef scene, double mu) {
   scene.contact.pairs[1].friction = mu;
   scene.steps.resize(5);
-  World w(scene);
+  WorldDef one;
+  one.threads = 1;  // three worlds side by side: one worker each
+  World w(scene, one);
   const Index warpEnd = bcOn(w.scene(), "fab.warp.end");
   ShearCycle c;
   EnergyBalance atPlus;
@@ -152,7 +154,8 @@ ShearCycle shearCycle(SceneDef scene, double mu) {
 TEST_CASE("fabric loadings: a shear cycle's loop dissipates more as friction between the yarns grows") {
   // Paper 5.2.2 (Fig. 15): the hysteresis of cyclic shear comes from friction between fibres. The
   // sample's amplitude, u = 0.3 mm (+-7.6 deg), with mu = 0, 0.1, 0.2 between warp and weft
-  // (frictionless within the yarns), each world on its own thread (worlds share nothing).
+  // (frictionless within the yarns), each world on its own thread (worlds share no state of the
+  // solve; OpenBLAS's thread count is process-wide, and every world sets the same).
   const SceneDef scene = loadScene(sourcePath("samples/fabric_shear.json"));
   REQUIRE(scene.steps.size() >= 5);
   REQUIRE(scene.contact.pairs.size() == 2);  // [0] within the yarns, [1] warp against weft
