@@ -100,8 +100,8 @@ void buildDetectAndReference(WorldState& w, TaskGraph& g) {
 void buildNormals(WorldState& w, TaskGraph& g) {
   ContactState& s = w.trial;
   if (w.contact.fibres && w.contact.followCrossings)
-    g.add("crossing follow", followCrossings, w.fibres, w.contact, s.zones, s.elements,
-          w.fibreStats);
+    g.add("crossing follow", followCrossings, w.fibres, w.fibres.q, w.contact, s.zones,
+          s.elements, w.fibreStats);
   if (w.contact.fibres)
     g.add("contact normals", updateNormalsAndGaps, w.fibres, w.fibres.q, w.contact, s.elements,
           w.fibreStats, w.def.trace);

@@ -24,6 +24,7 @@ Units: mm, N, MPa.
 import argparse
 import csv
 import json
+import math
 
 SPACING = 1.5          # between yarn axes, mm
 # Per weave: yarns in each direction, the generator's pattern, quadratic elements per fibre
@@ -234,7 +235,7 @@ def main():
     if not a.settle and not a.state:
         ap.error("--from FINAL_STATE_CSV is needed (or --settle to write the settle scene)")
     WEAVE = WEAVES[a.weave]
-    if not a.shear_u > 0:
+    if not (a.shear_u > 0 and math.isfinite(a.shear_u)):
         ap.error(f"--shear-u must be a positive displacement in mm, not {a.shear_u}")
     SHEAR_U = a.shear_u
     plain = a.weave == "plain"

@@ -42,15 +42,16 @@ bool closestInElements(const FibreStore& fs, const Eigen::VectorXd& q, Index eI,
 }
 
 // Moves element e's sections; how far they moved (the larger of the two, mm).
-double follow(const FibreStore& fs, double sinParallel, ContactElementStore& el, Index e) {
+double follow(const FibreStore& fs, const Eigen::VectorXd& q, double sinParallel,
+              ContactElementStore& el, Index e) {
   const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
   const FibrePoint pI = locate(fs, fI, el.sI[e]), pJ = locate(fs, fJ, el.sJ[e]);
   double zI = std::clamp(pI.z, -1 + kInside, 1 - kInside);
   double zJ = std::clamp(pJ.z, -1 + kInside, 1 - kInside);
-  if (!closestInElements(fs, fs.q, pI.element, pJ.element, elementLength(fs, fI),
+  if (!closestInElements(fs, q, pI.element, pJ.element, elementLength(fs, fI),
                          elementLength(fs, fJ), sinParallel, zI, zJ))
     return 0;
-  const Section I = sectionAt(fs, fs.q, {pI.element, zI}), J = sectionAt(fs, fs.q, {pJ.element, zJ});
+  const Section I = sectionAt(fs, q, {pI.element, zI}), J = sectionAt(fs, q, {pJ.element, zJ});
   const Vec3 d = J.x0 - I.x0;
   double xiI[2], xiJ[2];
   if (!outlinePoint(I.g1, I.g2, fs.radius[fI], d, xiI) ||
@@ -69,8 +70,8 @@ double follow(const FibreStore& fs, double sinParallel, ContactElementStore& el,
 
 }  // namespace
 
-void followCrossings(const FibreStore& fs, const ContactParams& p, const ZoneStore& zones,
-                     ContactElementStore& el, ContactLoopStats& stats) {
+void followCrossings(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
+                     const ZoneStore& zones, ContactElementStore& el, ContactLoopStats& stats) {
   stats.crossingShift = 0;
   if (!p.followCrossings) return;
   const double sinParallel = std::sin(p.thetaParallel);
@@ -79,7 +80,7 @@ void followCrossings(const FibreStore& fs, const ContactParams& p, const ZoneSto
       [&](const tbb::blocked_range<Index>& r, double shift) {
         for (Index e = r.begin(); e < r.end(); ++e)
           if (el.crossing[e] && !(zones.friction[el.zone[e]] * p.frictionFactor > 0))
-            shift = std::max(shift, follow(fs, sinParallel, el, e));
+            shift = std::max(shift, follow(fs, q, sinParallel, el, e));
         return shift;
       },
       [](double a, double b) { return std::max(a, b); });

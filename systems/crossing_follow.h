@@ -2,7 +2,7 @@
 // points of the two centrelines at every normal update of loop B, instead of staying at the
 // material points the last detection chose.
 //
-// Reads  FibreStore (layout, radii, q), ContactParams (theta_parallel, friction factor),
+// Reads  FibreStore (layout, radii), q, ContactParams (theta_parallel, friction factor),
 //        ZoneStore (friction per zone), ContactElementStore (crossing, fibreI/J, sI/J).
 // Writes ContactElementStore::sI, sJ, xiI*, xiJ*, sideI, sideJ of the elements it moves, and
 //        ContactLoopStats::crossingShift, the largest |s_new - s_old| over them (mm).
@@ -37,7 +37,8 @@
 
 namespace fibra {
 
-void followCrossings(const FibreStore& fibres, const ContactParams& params, const ZoneStore& zones,
-                     ContactElementStore& elements, ContactLoopStats& stats);
+// q: the state [x0 g1 g2] per node (fibres' layout).
+void followCrossings(const FibreStore& fibres, const Eigen::VectorXd& q, const ContactParams& params,
+                     const ZoneStore& zones, ContactElementStore& elements, ContactLoopStats& stats);
 
 }  // namespace fibra

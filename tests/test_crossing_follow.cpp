@@ -64,7 +64,7 @@ TEST_CASE("crossing follow: a slid crossing's sections move to the new closest p
   translate(c.fibres, A, Vec3(0, 0.03, 0));
   ContactElementStore el = detected;
   ContactLoopStats stats;
-  followCrossings(c.fibres, followParams(), c.contact.zones, el, stats);
+  followCrossings(c.fibres, c.fibres.q, followParams(), c.contact.zones, el, stats);
   const double sA = A == el.fibreI[0] ? el.sI[0] : el.sJ[0];
   const double sB = A == el.fibreI[0] ? el.sJ[0] : el.sI[0];
   CHECK(sA == doctest::Approx(2.05).epsilon(1e-3));
@@ -91,7 +91,7 @@ TEST_CASE("crossing follow: a slid crossing's sections move to the new closest p
       fromWeights += w.c[a][k] * c.fibres.q.segment<3>(kNodeDofs * (w.firstNode + a) + 3 * k);
   CHECK((fromWeights - xI).norm() < 1e-12);
   // Nothing left to move: a second call shifts nothing.
-  followCrossings(c.fibres, followParams(), c.contact.zones, el, stats);
+  followCrossings(c.fibres, c.fibres.q, followParams(), c.contact.zones, el, stats);
   CHECK(stats.crossingShift < 1e-12);
 }
 
@@ -102,19 +102,19 @@ TEST_CASE("crossing follow: frictional crossings and the option off keep their m
   ContactElementStore el = c.contact.elements;
   ZoneStore frictional = c.contact.zones;
   for (double& mu : frictional.friction) mu = 0.2;
-  followCrossings(c.fibres, followParams(), frictional, el, stats);
+  followCrossings(c.fibres, c.fibres.q, followParams(), frictional, el, stats);
   CHECK(stats.crossingShift == 0);
   CHECK(el.sI == c.contact.elements.sI);
   CHECK(el.sJ == c.contact.elements.sJ);
   // ... unless the step switches friction off (friction_factor 0).
   ContactParams off = followParams();
   off.frictionFactor = 0;
-  followCrossings(c.fibres, off, frictional, el, stats);
+  followCrossings(c.fibres, c.fibres.q, off, frictional, el, stats);
   CHECK(stats.crossingShift > 0.04);
   ContactParams disabled = followParams();
   disabled.followCrossings = false;
   el = c.contact.elements;
-  followCrossings(c.fibres, disabled, c.contact.zones, el, stats);
+  followCrossings(c.fibres, c.fibres.q, disabled, c.contact.zones, el, stats);
   CHECK(stats.crossingShift == 0);
   CHECK(el.sI == c.contact.elements.sI);
 }
