@@ -89,9 +89,10 @@ Index settleFriction(WorldState& w, ContactReport& report) {
 // normals (systems/normal_acceleration.h), whose history then goes on.
 constexpr double kSameSections = 1e-2;
 
-// Loop B: Newton with the elements fixed, then the normals at the new state (frictionless
-// crossings' sections moved to the closest points first, systems/crossing_follow.h), until the
-// normals stop turning and the sections moving, or n_B passes. Every update is recorded by the mixer (contact `normal_acceleration`);
+// Loop B: Newton with the elements fixed, then the normals at the new state (with
+// contact.follow_crossings, frictionless crossings' sections moved to the closest points first,
+// systems/crossing_follow.h), until the normals stop turning and no section moves, or n_B
+// passes. Every update is recorded by the mixer (contact `normal_acceleration`);
 // when it has a secant step (the map showed itself unstable), that replaces the update.
 // Linearised fibre normals (contact `normal_update` "newton") already are those of the
 // converged state: their update only records them (for the reports and the step limit), and
