@@ -118,17 +118,14 @@ void bandSections(const FibreFrame& f, Index fibre, const CutPlane& plane,
   const int samples = kChordsPerElement * int(nodes.size() - 1);
   const auto sOf = [&](int k) { return double(k) / kChordsPerElement; };
   Vec3 p, m;
-  for (int k = 0; k <= samples;) {
-    if (!chordAt(f, nodes, plane, sOf(k), p, m)) {
-      ++k;
-      continue;
-    }
+  for (int k = 0; k <= samples; ++k) {  // k: a sample without a chord (or past the last)
     const int first = k;
     std::vector<Vec3> side1, side2;
     for (; k <= samples && chordAt(f, nodes, plane, sOf(k), p, m); ++k) {
       side1.push_back(p);
       side2.push_back(m);
     }
+    if (side1.empty()) continue;
     const double s0 = sOf(first), s1 = sOf(k - 1);
     bool steep = false;
     for (const auto& [s, isSteep] : cross)
