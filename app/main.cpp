@@ -131,15 +131,16 @@ const char* const kUsage =
 // forms).
 std::string usageLine(const std::string& command) {
   const std::string usage = kUsage;
+  // The entry starting at `from`, with its continuation lines (indented past "       fibra").
+  const auto entry = [&usage](size_t from) {
+    size_t end = usage.find('\n', from);
+    while (usage.compare(end, 9, "\n        ") == 0) end = usage.find('\n', end + 1);
+    return usage.substr(from, end - from);
+  };
   size_t at = command.empty() ? std::string::npos : usage.find("fibra " + command + " ");
-  if (at == std::string::npos || at > usage.find("\n\n") || command == "run") {
-    const size_t resume = usage.find("fibra run --resume");
-    const auto line = [&usage](size_t from) {
-      return usage.substr(from, usage.find('\n', from) - from);
-    };
-    return line(usage.find("fibra run")) + "\n       " + line(resume);
-  }
-  return usage.substr(at, usage.find('\n', at) - at);
+  if (at == std::string::npos || at > usage.find("\n\n") || command == "run")
+    return entry(usage.find("fibra run")) + "\n       " + entry(usage.find("fibra run --resume"));
+  return entry(at);
 }
 
 struct Options {

@@ -170,9 +170,10 @@ int section(int argc, char** argv) {
   p.title = a.get("--title");
   return report([&] {
     const int count = int(readRunFrames(a.runDir).size());
+    for (const int frame : frames) frameIndex(a.runDir, frame, count);  // all, before drawing
     for (const int frame : frames) {
       p.frame = frame;
-      p.file = framePng(png, frame < 0 ? count - 1 : frame, frames.size());
+      p.file = framePng(png, frameIndex(a.runDir, frame, count), frames.size());
       const SectionResult r = drawSection(a.runDir, p);
       p.axis = r.plane.axis;  // the stages of a run are cut by one plane: the first frame's
       p.value = r.plane.value;

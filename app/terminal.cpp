@@ -1,6 +1,7 @@
 #include "app/terminal.h"
 
 #include "engine/contact_setup.h"
+#include "systems/linear_solver.h"
 #include "fibra/version.h"
 
 #include <tbb/info.h>
@@ -114,13 +115,34 @@ std::string contactLines(const World& world) {
   std::string out;
   if (c.fibres)
     out += format("  contact: fibre-fibre, p_max %g mm, mu %g, theta_cross %g deg, "
-                  "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d\n",
+                  "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d%s\n",
                   c.pairs.pMax[0], c.pairs.mu[0], degrees(c.thetaCross), degrees(c.thetaParallel),
-                  c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops);
+                  c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops,
+                  c.followCrossings ? ", crossings follow the closest points" : "");
   out += lawLine(c);
   if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(s);
   if (c.tools) out += toolLines(world);
   return out;
+}
+
+// The scene's linear solver settings (a WorldDef may override the strategy: engine/world.h).
+std::string solverLine(const SceneDef& s) {
+  const SolverDef& v = s.solver;
+  std::string strategy = strategyName(v.strategy);
+  if (v.strategy == LinearStrategy::Auto)
+    strategy += format(" (direct below %d free equations, mumps from there)",
+                       int(kMumpsFromEquations));
+  std::string out = format("  linear solver: %s, ordering %s", strategy.c_str(),
+                           v.ordering == Ordering::Auto  ? "auto"
+                           : v.ordering == Ordering::Amd ? "amd"
+                                                         : "metis");
+  if (v.krylov.blrTolerance > 0) out += format(", block low-rank %g", v.krylov.blrTolerance);
+  const bool krylov = v.strategy == LinearStrategy::Krylov ||
+                      v.strategy == LinearStrategy::KrylovLu || v.krylov.blrTolerance > 0;
+  if (krylov)
+    out += format(", GMRES to %g (restart %d, <= %d iterations)", v.krylov.tolerance,
+                  v.krylov.restart, v.krylov.maxIterations);
+  return out + "\n";
 }
 
 }  // namespace
@@ -136,6 +158,7 @@ std::string describeProblem(const World& world, const std::string& scene, int th
   out += format("  %zu steps, %d increments, t = 0 .. %g\n", s.steps.size(), increments,
                 s.steps.empty() ? 0.0 : s.steps.back().endTime);
   out += contactLines(world);
+  out += solverLine(s);
   if (threads >= 0)
     out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());
   return out;

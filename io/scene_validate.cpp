@@ -6,6 +6,7 @@
 
 #include "engine/group_order.h"
 #include "io/json_reader.h"
+#include "systems/linear_solver.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -498,6 +499,13 @@ void validateSolver(const SolverDef& s) {
   atLeast(s.krylov.refactorAbove, 1, "solver.refactor_above");
   if (!(s.krylov.blrTolerance >= 0 && s.krylov.blrTolerance < 1))
     fail("solver.blr_tolerance", "must be in [0, 1), got " + num(s.krylov.blrTolerance));
+  // Only MUMPS builds a block low-rank factor: anywhere else the setting would be ignored.
+  if (s.krylov.blrTolerance > 0 && s.strategy != LinearStrategy::Mumps &&
+      s.strategy != LinearStrategy::Auto)
+    fail("solver.blr_tolerance",
+         "applies to the strategies mumps and auto (mumps from " +
+             std::to_string(kMumpsFromEquations) + " equations), not to '" +
+             strategyName(s.strategy) + "'");
 }
 
 // Plots: the columns exist only once the World is built (io/plot_outputs.h checks them).

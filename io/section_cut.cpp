@@ -228,14 +228,18 @@ std::vector<PvdFrame> readRunFrames(const std::string& runDir) {
   }
 }
 
-FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
-  const fs::path pvd = fs::path(runDir) / "result.pvd";
-  const std::vector<PvdFrame> frames = readRunFrames(runDir);
-  const int last = int(frames.size()) - 1;
+int frameIndex(const std::string& runDir, int index, int count) {
+  const int last = count - 1;
   if (index < -1 || index > last)
-    throw PlotInputError(pvd.string() + ": --frame: " + std::to_string(index) +
-                         " outside 0.." + std::to_string(last) + " (or last)");
-  const int k = index < 0 ? last : index;
+    throw PlotInputError((fs::path(runDir) / "result.pvd").string() + ": --frame: " +
+                         std::to_string(index) + " outside 0.." + std::to_string(last) +
+                         " (or last)");
+  return index < 0 ? last : index;
+}
+
+FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen) {
+  const std::vector<PvdFrame> frames = readRunFrames(runDir);
+  const int k = frameIndex(runDir, index, int(frames.size()));
   const fs::path vtu = fs::path(runDir) / frames[size_t(k)].file;
   if (!std::ifstream(vtu))
     throw PlotInputError(vtu.string() + ": cannot read frame " + std::to_string(k));

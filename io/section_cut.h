@@ -77,6 +77,10 @@ FibreFrame fibreFrameFromVtu(const VtuArrays& arrays);
 // The frames of RUN_DIR/result.pvd (part 0); PlotInputError when there are none.
 std::vector<PvdFrame> readRunFrames(const std::string& runDir);
 
+// Frame `index` (0-based, -1 for the last) of a run with `count` frames, as an index in
+// 0..count-1; PlotInputError naming RUN_DIR/result.pvd when it is out of range.
+int frameIndex(const std::string& runDir, int index, int count);
+
 // Frame `index` (0-based, -1 for the last) of RUN_DIR/result.pvd; PlotInputError when the run
 // has no frames or `index` is out of range. `chosen` receives the frame's index.
 FibreFrame readFibreFrame(const std::string& runDir, int index, int* chosen = nullptr);

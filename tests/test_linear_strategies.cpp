@@ -285,19 +285,21 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
     return text;
   };
   const SceneDef s = loadSceneFromString(
-      scene(R"({"strategy": "krylov", "ordering": "metis", "krylov_tolerance": 1e-9,
+      scene(R"({"strategy": "mumps", "ordering": "metis", "krylov_tolerance": 1e-9,
                 "krylov_restart": 30, "krylov_max_iterations": 100, "refactor_above": 25,
                 "blr_tolerance": 1e-6})"),
       "s.json");
-  CHECK(s.solver.strategy == LinearStrategy::Krylov);
+  CHECK(s.solver.strategy == LinearStrategy::Mumps);
   CHECK(s.solver.ordering == Ordering::Metis);
   CHECK(s.solver.krylov.tolerance == 1e-9);
   CHECK(s.solver.krylov.restart == 30);
   CHECK(s.solver.krylov.maxIterations == 100);
   CHECK(s.solver.krylov.refactorAbove == 25);
   CHECK(s.solver.krylov.blrTolerance == 1e-6);
-  CHECK(loadSceneFromString(scene(R"({"strategy": "mumps"})"), "s.json").solver.strategy ==
-        LinearStrategy::Mumps);
+  CHECK(loadSceneFromString(scene(R"({"strategy": "krylov"})"), "s.json").solver.strategy ==
+        LinearStrategy::Krylov);
+  CHECK(loadSceneFromString(scene(R"({"blr_tolerance": 1e-6})"), "s.json")
+            .solver.krylov.blrTolerance == 1e-6);  // auto: mumps from 7000 equations
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.krylov.blrTolerance == 0);
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.strategy == LinearStrategy::Auto);
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.ordering == Ordering::Auto);
@@ -314,6 +316,9 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(error(R"({"refactor_above": 0})") == "s.json: solver.refactor_above: must be >= 1, got 0");
   CHECK(error(R"({"blr_tolerance": -1e-6})") ==
         "s.json: solver.blr_tolerance: must be in [0, 1), got -1e-06");
+  CHECK(error(R"({"strategy": "krylov", "blr_tolerance": 1e-6})") ==
+        "s.json: solver.blr_tolerance: applies to the strategies mumps and auto (mumps from 7000 "
+        "equations), not to 'krylov'");
 }
 
 TEST_CASE("the linear solver's spans appear in the trace with their counts") {

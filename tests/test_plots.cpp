@@ -394,9 +394,11 @@ TEST_CASE("plot and section: gnuplot missing or bad usage are clear errors") {
   CHECK(r.status == 2);
   CHECK(contains(r.output, (dir.path() / "run" / "history.csv").string() +
                                ": y: unknown column 'probe.tip.q'"));
-  r = runFibra({"section", dir / "run", "--frame", "99"}, dir);
+  r = runFibra({"section", dir / "run", "--frame", "0,99", "--out", dir / "early.png"}, dir);
   CHECK(r.status == 2);
   CHECK(contains(r.output, "result.pvd: --frame: 99 outside 0..3 (or last)"));
+  CHECK(!fs::exists(dir.path() / "early_0000.png"));  // every frame checked before the first
+                                                      // is drawn
   r = runFibra({"section", dir / "run", "--plane", "x=50"}, dir);
   CHECK(r.status == 2);
   CHECK(contains(r.output, "the plane x = 50 mm cuts no fibre (the nodes span x = 0 to"));
