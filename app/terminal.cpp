@@ -196,7 +196,16 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
                  "  note: the step ends %.3g of the reference force away from static equilibrium "
                  "(viscous_force); hold the loads in a step with damping to let the state settle\n",
                  r.viscousForce);
-  if (!contact || v != Verbosity::Verbose) return;
+  if (v != Verbosity::Verbose) return;
+  const LinearReport& l = r.linear;
+  std::string linear = format("  linear solves: %d factorisations (%d analyses), %d solves",
+                              l.factorisations, l.analyses, l.solves);
+  if (l.fallbacks > 0) linear += format(", %d fallbacks", l.fallbacks);
+  if (l.krylovIterations > 0 || l.krylovFailures > 0)
+    linear += format(", GMRES %d iterations (at most %d in one solve), %d failures",
+                     l.krylovIterations, l.maxKrylovIterations, l.krylovFailures);
+  std::fprintf(stderr, "%s\n", linear.c_str());
+  if (!contact) return;
   std::fprintf(stderr,
                "  contact: %d zones, %d + %d tool elements (%d active, %d sliding), max "
                "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts; detection: %d "

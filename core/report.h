@@ -93,6 +93,19 @@ struct EnergyBalance {
   }
 };
 
+// The linear solves of an increment, all attempts together (systems/linear_solver.h
+// LinearSolveStats): counts only.
+struct LinearReport {
+  int analyses = 0;             // symbolic analyses (a new sparsity pattern)
+  int factorisations = 0;       // numeric factorisations
+  int solves = 0;               // right-hand sides solved
+  int fallbacks = 0;            // LL^T -> LDL^T, or MUMPS -> direct
+  int krylovIterations = 0;     // GMRES iterations, summed over the solves (Krylov strategies,
+                                // or mumps with blr_tolerance > 0)
+  int maxKrylovIterations = 0;  // most GMRES iterations of one solve
+  int krylovFailures = 0;       // solves that missed krylov_tolerance even with a fresh factor
+};
+
 struct StepReport {
   StepStatus status = StepStatus::Finished;
   int step = -1;            // scene step index
@@ -109,6 +122,7 @@ struct StepReport {
   std::vector<NewtonRecord> history;  // the accepted attempt's iterations
   StepTimings timings;
   ContactReport contact;    // when the scene has contact or tools
+  LinearReport linear;      // the increment's linear solves
   EnergyBalance energy;     // since t = 0, at the state reached
   std::string message;      // why a cutback or failure happened
 };

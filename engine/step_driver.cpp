@@ -191,9 +191,16 @@ void runStage(WorldState& w, TaskGraph& stage, double t, bool withTangent) {
 
 void assembleResidual(WorldState& w, double t) { runStage(w, w.pipeline.assemble, t, false); }
 
+// The solver's counts since the increment began (its stats are reset then).
+LinearReport linearReport(const LinearSolveStats& s) {
+  return {s.analyses, s.factorisations, s.solves, s.fallbacks, s.krylovIterations,
+          s.maxKrylovIterations, s.krylovFailures};
+}
+
 StepReport advance(WorldState& w) {
   StepReport rep;
   if (w.step >= int(w.scene.steps.size())) return rep;
+  w.solver.resetStats();
   const auto clock0 = std::chrono::steady_clock::now();
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();
@@ -213,6 +220,7 @@ StepReport advance(WorldState& w) {
     rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
     rep.timings.total = elapsed();
     rep.energy = w.energy.balance;
+    rep.linear = linearReport(w.solver.stats());
     return rep;
   };
   const double nominal = (st.endTime - tStart) / st.increments;
@@ -264,6 +272,7 @@ StepReport advance(WorldState& w) {
   rep.loadFactor = (t1 - tStart) / (st.endTime - tStart);
   rep.timings.total = elapsed();
   rep.energy = w.energy.balance;
+  rep.linear = linearReport(w.solver.stats());
   return rep;
 }
 

@@ -129,6 +129,17 @@ HistoryColumns energyColumns() {
           }};
 }
 
+HistoryColumns linearColumns() {
+  return {{"linear.factorisations", "linear.solves", "linear.fallbacks",
+           "linear.krylov_iterations", "linear.krylov_max", "linear.krylov_failures"},
+          [](const World&, const StepReport& r, std::vector<double>& row) {
+            const LinearReport& l = r.linear;
+            row.insert(row.end(), {double(l.factorisations), double(l.solves), double(l.fallbacks),
+                                   double(l.krylovIterations), double(l.maxKrylovIterations),
+                                   double(l.krylovFailures)});
+          }};
+}
+
 HistoryColumns probeColumns(const World& world) {
   HistoryColumns c;
   for (const ProbeDef& p : world.scene().output.probes)
@@ -143,7 +154,7 @@ HistoryColumns probeColumns(const World& world) {
 std::vector<HistoryColumns> standardHistoryColumns(const World& world) {
   return {incrementColumns(),    reactionColumns(world),     toolColumns(world),
           contactColumns(world), continuationColumns(world), energyColumns(),
-          probeColumns(world)};
+          linearColumns(),       probeColumns(world)};
 }
 
 HistoryWriter::HistoryWriter(const std::string& path, std::vector<HistoryColumns> columns,

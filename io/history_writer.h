@@ -63,6 +63,11 @@ HistoryColumns contactColumns(const World& world);
 // at the end of the increment (how far the state is from static equilibrium; 0 in steps
 // without damping).
 HistoryColumns continuationColumns(const World& world);
+// The increment's linear solves, all attempts (core/report.h LinearReport):
+// linear.factorisations, .solves, .fallbacks, .krylov_iterations (GMRES, summed), .krylov_max (of
+// one solve), .krylov_failures. Not the symbolic analyses: a resumed run analyses again where
+// the uninterrupted one re-used its analysis, and the history of both must be the same.
+HistoryColumns linearColumns();
 // Per probe P: probe.P.x .y .z, the position of its node (mm).
 HistoryColumns probeColumns(const World& world);
 // All of the above, in that order.

@@ -321,11 +321,12 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
         "equations), not to 'krylov'");
 }
 
-TEST_CASE("the linear solver's spans appear in the trace with their counts") {
+TEST_CASE("the linear solver's spans appear in the trace with their counts, which the step report gives") {
   Trace trace;
   World w(scenes::bundle(1, 10, 0.01, 5e-4, 0.1),
           {.threads = 1, .trace = &trace, .linearStrategy = LinearStrategy::Krylov});
-  REQUIRE(w.step().status == StepStatus::Converged);
+  const StepReport r = w.step();
+  REQUIRE(r.status == StepStatus::Converged);
   int factorise = 0, solve = 0, krylov = 0;
   std::int64_t iterations = 0;
   for (const Trace::Event& e : trace.events()) {
@@ -338,4 +339,20 @@ TEST_CASE("the linear solver's spans appear in the trace with their counts") {
   CHECK(solve >= 1);
   CHECK(krylov >= solve);  // one GMRES run per solve, two when a re-used factor failed
   CHECK(iterations >= krylov);
+  // The increment's report counts what the trace recorded (the first increment: the whole
+  // trace), and the GMRES count reaches the history (linear.krylov_iterations).
+  CHECK(r.linear.factorisations == factorise);
+  CHECK(r.linear.solves == solve);
+  CHECK(r.linear.krylovIterations == iterations);
+  CHECK(r.linear.maxKrylovIterations >= 1);
+  CHECK(r.linear.maxKrylovIterations <= 200);  // krylov_max_iterations
+  CHECK(r.linear.krylovFailures == 0);
+  // The next increment's counts start from zero.
+  trace.clear();
+  const StepReport next = w.step();
+  REQUIRE(next.status == StepStatus::Converged);
+  std::int64_t nextIterations = 0;
+  for (const Trace::Event& e : trace.events())
+    if (std::string(e.name) == "krylov") nextIterations += e.items;
+  CHECK(next.linear.krylovIterations == nextIterations);
 }

@@ -159,7 +159,9 @@ TEST_CASE(
             "reaction.beam.start.fz", "reaction.beam.start.mx", "reaction.beam.start.my",
             "reaction.beam.start.mz", "energy.strain", "energy.external", "energy.supports",
             "energy.contact_normal", "energy.friction", "energy.tools", "energy.stabilisation",
-            "energy.error", "probe.tip.x", "probe.tip.y", "probe.tip.z"});
+            "energy.error", "linear.factorisations", "linear.solves", "linear.fallbacks",
+            "linear.krylov_iterations", "linear.krylov_max", "linear.krylov_failures",
+            "probe.tip.x", "probe.tip.y", "probe.tip.z"});
   const std::vector<double> increments = column(history, "increment");
   for (size_t i = 0; i < increments.size(); ++i) CHECK(increments[i] == i + 1);
   CHECK(history.back()[0] == "1");

@@ -268,6 +268,12 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
                                            "energy.tools",
                                            "energy.stabilisation",
                                            "energy.error",
+                                           "linear.factorisations",
+                                           "linear.solves",
+                                           "linear.fallbacks",
+                                           "linear.krylov_iterations",
+                                           "linear.krylov_max",
+                                           "linear.krylov_failures",
                                            "probe.tip.x",
                                            "probe.tip.y",
                                            "probe.tip.z",
@@ -294,6 +300,10 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
     CHECK(value(i, "reaction.beam.start.mz") ==
           doctest::Approx(-value(i, "probe.tip.x") * Fy).epsilon(1e-6).scale(0));
     CHECK(value(i, "extra.increment_squared") == i * i);
+    // The direct strategy factorises afresh at every Newton iteration and runs no GMRES.
+    CHECK(value(i, "linear.factorisations") == value(i, "total_iterations"));
+    CHECK(value(i, "linear.solves") >= value(i, "linear.factorisations"));
+    CHECK(value(i, "linear.krylov_iterations") == 0);
   }
   // The last row's probe is the world's final tip position, to the last bit.
   const Vec3 tip = x0Of(world.fibres().q, world.fibres().nodes() - 1);
