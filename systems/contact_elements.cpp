@@ -274,9 +274,10 @@ Vec3 centrelineSecond(const FibreStore& fs, const CentrelineStore& cl, Index f, 
 // 0.65 p_max where the fibres overlapped by 9. Kept only when Newton converges inside both
 // widened intervals to a minimum (dF positive definite) and the fibres make more than
 // theta_parallel there (nearly parallel fibres have no well-posed closest pair); else the eq. 8
-// sections stay. True when they were moved.
+// sections stay. True when they were moved; `curvature` (when given) then receives the smaller
+// eigenvalue of dF there (dimensionless: s in mm along fibres of unit stretch).
 bool closestSections(const Intermediate& g, const Windows& w, double thetaParallel,
-                     ElementSides& sides) {
+                     ElementSides& sides, double* curvature = nullptr) {
   const FibreStore& fs = g.fs;
   const double h = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
   double sI = sides.sI, sJ = sides.sJ;
@@ -297,10 +298,45 @@ bool closestSections(const Intermediate& g, const Windows& w, double thetaParall
       const Vec3 uJ = centrelineAt(fs, g.cl, g.J, sJ).dxds.normalized();
       if (uI.cross(uJ).norm() <= std::sin(thetaParallel)) return false;
       sides.sI = sI, sides.sJ = sJ;
+      if (curvature) *curvature = 0.5 * (a11 + a22) - std::hypot(0.5 * (a11 - a22), a12);
       return true;
     }
   }
   return false;
+}
+
+// A zone of two different fibres that cross is a point contact when the patch where their
+// surfaces can meet is shorter than the spacing of its eq. 7 elements. Near the closest points
+// the centreline distance grows as d = d0 + delta^T H delta / (2 d0) (H = dF above, delta the
+// offsets in sI and sJ), so a penetration p_max reaches out to |delta| = l with
+//   l = sqrt(2 (R_I + R_J) p_max / lambda_min(H)).
+// When 2 l is below the elements' spacing h_min / 2, they sample the patch once at most, at
+// sections up to h_min / 4 off the closest ones, and their gaps miss the overlap there (a flat
+// 2 x 2 plain weave of 40-element fibres: 22 p_max of overlap where they reported 5.8,
+// docs/CONTACT.md "Crossings in long zones"): the element nearest the closest points is then
+// moved onto them (`sides`); the others stay, and still catch the fibres where they slide.
+bool pointZone(const Intermediate& g, const Windows& w, const ContactParams& p,
+               ElementSides& sides) {
+  if (g.I == g.J) return false;
+  const double pMax = p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, g.I, g.J)];
+  sides = sectionsAt(g, 0.5, w, 0);
+  double lambda = 0;
+  if (!closestSections(g, w, p.thetaParallel, sides, &lambda) || !(lambda > 0)) return false;
+  const double h = std::min(elementLength(g.fs, g.I), elementLength(g.fs, g.J));
+  const double l = std::sqrt(2 * (g.fs.radius[g.I] + g.fs.radius[g.J]) * pMax / lambda);
+  return 2 * l < 0.5 * h;
+}
+
+// The element of a point zone that goes to the closest points: the one whose zeta is nearest
+// theirs (zeta of sI on I's interval, or of sJ where J's interval is the longer).
+Index nearestElement(const Intermediate& g, const ContactElementStore& el, Index first, Index nc,
+                     const ElementSides& closest) {
+  const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
+  const double zeta = onI ? (closest.sI - g.sI1) / g.dI : (closest.sJ - g.sJ1) / g.dJ;
+  Index best = first;
+  for (Index e = first + 1; e < first + nc; ++e)
+    if (std::abs(el.zeta[e] - zeta) < std::abs(el.zeta[best] - zeta)) best = e;
+  return best;
 }
 
 // The particles of eq. 9 (towards the other section's centre), or on an end face when one
@@ -350,10 +386,16 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   });
   for (e = first; e < first + nc; ++e)
     el.weight[e] = total > 0 ? el.length[e] * double(nc) / total : 1.0;
+  ElementSides crossing{};
+  const Index atCrossing = nc > 1 && pointZone(g, windows, p, crossing)
+                               ? nearestElement(g, el, first, nc, crossing)
+                               : -1;
   for (e = first; e < first + nc; ++e) {
     const double zeta = el.zeta[e];
-    ElementSides sides = sectionsAt(g, zeta, windows, sep);
-    const bool closest = nc == 1 && g.I != g.J && closestSections(g, windows, p.thetaParallel, sides);
+    ElementSides sides = e == atCrossing ? crossing : sectionsAt(g, zeta, windows, sep);
+    const bool closest =
+        e == atCrossing ||
+        (nc == 1 && g.I != g.J && closestSections(g, windows, p.thetaParallel, sides));
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];

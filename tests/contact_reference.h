@@ -259,8 +259,12 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       }
     }
   }
-  std::vector<Element> out;
-  for (auto [zeta, length] : placed) {
+  // One element at zeta: eq. 8 sections (or, with `from`, that element's sections), the
+  // closest points when `closestPoints`; `curvature` receives the smaller eigenvalue of the
+  // distance's Hessian there (0 when Newton did not keep them).
+  const auto element = [&](double zeta, double length, bool closestPoints, const Element* from,
+                           double& curvature) -> Element {
+    curvature = 0;
     const double sIz = (1 - zeta) * z.sI1 + zeta * z.sI2, sJz = (1 - zeta) * z.sJ1 + zeta * z.sJ2;
     const Section cI = at(fs, q, I, sIz), cJ = at(fs, q, J, sJz);
     const Vec3 x = 0.5 * (cI.x0 + cJ.x0), tInt = 0.5 * (cI.dx0ds * dI + cJ.dx0ds * dJ);
@@ -290,7 +294,9 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       return true;
     };
     e.sI = sIz, e.sJ = sJz;
-    const bool okI = cut(I, cI, sIz, z.sI1, z.sI2, e.sI), okJ = cut(J, cJ, sJz, z.sJ1, z.sJ2, e.sJ);
+    const bool okI = from || cut(I, cI, sIz, z.sI1, z.sI2, e.sI);
+    const bool okJ = from || cut(J, cJ, sJz, z.sJ1, z.sJ2, e.sJ);
+    if (from) e.sI = from->sI, e.sJ = from->sJ, e.fallback = from->fallback & 7, e.ambiguous = from->ambiguous;
     auto bracket = [&](Index f, double s1, double s2) {
       return std::pair{std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
     };
@@ -311,7 +317,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     // gradient [d . t_I, -d . t_J] from the sections and its Hessian by central differences of
     // the gradient; kept when it converges inside both brackets, at a minimum, with the fibres
     // more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings").
-    if (placed.size() == 1 && I != J) {
+    if (closestPoints && !from) {
       const auto [aI, bI] = bracket(I, z.sI1, z.sI2);
       const auto [aJ, bJ] = bracket(J, z.sJ1, z.sJ2);
       const auto gradient = [&](double a, double b) {
@@ -333,7 +339,10 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         if (!(u(0) >= aI && u(0) <= bI && u(1) >= aJ && u(1) <= bJ)) break;
         if (step.lpNorm<1>() <= 1e-10 * h) {
           const Vec3 uI = at(fs, q, I, u(0)).dx0ds.normalized(), uJ = at(fs, q, J, u(1)).dx0ds.normalized();
-          if (uI.cross(uJ).norm() > std::sin(p.thetaParallel)) e.sI = u(0), e.sJ = u(1);
+          if (uI.cross(uJ).norm() > std::sin(p.thetaParallel)) {
+            e.sI = u(0), e.sJ = u(1);
+            curvature = H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
+          }
           break;
         }
       }
@@ -379,8 +388,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         if (nf.norm() > 1e-12 * (fs.radius[I] + fs.radius[J])) {  // else (end to end): eq. 10
           e.normal = nf.normalized();
           e.gap = (pI - pJ).dot(e.normal);
-          out.push_back(e);
-          continue;
+          return e;
         }
       }
     }
@@ -398,7 +406,28 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     const Vec3 pI = sI.x0 + e.xiI[0] * sI.g1 + e.xiI[1] * sI.g2;
     const Vec3 pJ = sJ.x0 + e.xiJ[0] * sJ.g1 + e.xiJ[1] * sJ.g2;
     e.gap = (pI - pJ).dot(e.normal);  // eq. 11
-    out.push_back(e);
+    return e;
+  };
+  std::vector<Element> out;
+  double curvature = 0;
+  for (auto [zeta, length] : placed)
+    out.push_back(element(zeta, length, placed.size() == 1 && I != J, nullptr, curvature));
+  // A crossing in a zone of several elements (docs/CONTACT.md "Crossings in long zones"): the
+  // closest points from the sections at zeta = 1/2; when a penetration p_max there spans less
+  // than half the element spacing h_min / 2 (l = sqrt(2 (R_I + R_J) p_max / lambda_min)), the
+  // element whose zeta is nearest theirs takes them.
+  if (placed.size() > 1 && I != J) {
+    const Element mid = element(0.5, 0, true, nullptr, curvature);
+    const double hMin = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
+    const double pMax = p.pairs.pMax[pairClass(p, I, J)];
+    if (curvature > 0 && 2 * std::sqrt(2 * (fs.radius[I] + fs.radius[J]) * pMax / curvature) < 0.5 * hMin) {
+      const bool onI = std::abs(dI) >= std::abs(dJ);
+      const double zeta = onI ? (mid.sI - z.sI1) / dI : (mid.sJ - z.sJ1) / dJ;
+      std::size_t k = 0;
+      for (std::size_t c = 1; c < placed.size(); ++c)
+        if (std::abs(placed[c].first - zeta) < std::abs(placed[k].first - zeta)) k = c;
+      out[k] = element(placed[k].first, placed[k].second, true, &mid, curvature);
+    }
   }
   return out;
 }

@@ -9,6 +9,7 @@
 
 #include <doctest/doctest.h>
 
+#include <numbers>
 #include <random>
 
 using namespace fibra;
@@ -224,6 +225,45 @@ TEST_CASE("perpendicular crossing: J's sections are the closest points, N along 
   }
   const Index mid = d.zones.elementCount[0] / 2;  // elements straddle the crossing symmetrically
   CHECK(std::abs(d.el.sI[mid] - 0.55) <= 0.5 * 1.2 / 6);
+}
+
+TEST_CASE("a crossing in a zone of several elements: the nearest element moves to the closest points") {
+  // J crosses x at 90 deg over s_I = 0.57 (between eq. 8 elements), its centreline 1.95 R above:
+  // the fibres overlap by 0.05 R at s_I = 0.57, s_J = 0.6, and nowhere more.
+  const double R = 0.05;
+  const FibreStore fs = pair(fixtures::polylineFibre("x", R, 24, 2, {Vec3(0, 0, 0), Vec3(1.2, 0, 0)}),
+                             fixtures::polylineFibre("y", R, 24, 2, {Vec3(0.57, -0.6, 1.95 * R), Vec3(0.57, 0.6, 1.95 * R)}));
+  const ContactParams p = defaults(fs);
+  // The patch where a penetration p_max can reach, l = sqrt(2 (2R) p_max / 1), is shorter than
+  // a quarter element, h = 0.05 mm (docs/CONTACT.md "Crossings in long zones").
+  REQUIRE(2 * std::sqrt(4 * R * p.pMax) < 0.5 * 0.05);
+  Detected d;
+  detect(fs, fs.q, p, d);
+  REQUIRE(d.zones.size() == 1);
+  REQUIRE(d.zones.elementCount[0] > 1);
+  int moved = 0;
+  double deepest = 1e300;
+  for (Index e = 0; e < d.el.size(); ++e) {
+    deepest = std::min(deepest, d.el.gap[e]);
+    if (!d.el.crossing[e]) continue;
+    ++moved;
+    CHECK(d.el.sI[e] == doctest::Approx(0.57).epsilon(1e-12));
+    CHECK(d.el.sJ[e] == doctest::Approx(0.6).epsilon(1e-12));
+    CHECK(d.el.gap[e] == doctest::Approx(-0.05 * R).epsilon(1e-9));
+  }
+  CHECK(moved == 1);
+  CHECK(deepest == doctest::Approx(-0.05 * R).epsilon(1e-9));  // the zone reports the overlap
+
+  // At 10 deg the patch is longer than the elements' spacing: a line contact, eq. 8 sections.
+  const double a = 10 * std::numbers::pi / 180;
+  const Vec3 c(0.57, 0, 1.95 * R), t(std::cos(a), std::sin(a), 0);
+  const FibreStore shallow = pair(fixtures::polylineFibre("x", R, 24, 2, {Vec3(0, 0, 0), Vec3(1.2, 0, 0)}),
+                                  fixtures::polylineFibre("y", R, 24, 2, {c - 0.6 * t, c + 0.6 * t}));
+  Detected e;
+  detect(shallow, shallow.q, defaults(shallow), e);
+  REQUIRE(e.zones.size() == 1);
+  REQUIRE(e.zones.elementCount[0] > 1);
+  for (Index k = 0; k < e.el.size(); ++k) CHECK(!e.el.crossing[k]);
 }
 
 TEST_CASE("zero-length zone: one proximate test point gives one element at zeta = 1/2") {

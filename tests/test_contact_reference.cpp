@@ -14,6 +14,7 @@ namespace {
 struct Coverage {
   int zones = 0, elements = 0, checkedElements = 0, zeroLength = 0, sectionFallbacks = 0;
   int tangentFallbacks = 0, crossing = 0, parallel = 0, blended = 0, endFaces = 0;
+  int movedToClosest = 0;  // elements of zones of several moved to a crossing's closest points
 };
 
 void compareElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
@@ -40,6 +41,7 @@ void compareElements(const FibreStore& fs, const Eigen::VectorXd& q, const Conta
     CHECK(std::abs(el.length[e] - r.length) <= (ref.size() == 1 ? 0.02 : 1e-9) * (1e-3 + r.length));
     CHECK((el.fallback[e] & (7 | kEndFaceI | kEndFaceJ)) == r.fallback);
     cov.endFaces += (r.fallback & (kEndFaceI | kEndFaceJ)) != 0;
+    cov.movedToClosest += zones.elementCount[z] > 1 && el.crossing[e];
     CHECK(std::abs(el.sI[e] - r.sI) <= 1e-8);
     CHECK(std::abs(el.sJ[e] - r.sJ) <= 1e-8);
     CHECK(std::abs(el.xiI1[e] - r.xiI[0]) <= 1e-8);
@@ -121,10 +123,13 @@ TEST_CASE("contact detection matches the brute-force reference: crossings at eve
     total.sectionFallbacks += c.sectionFallbacks;
     total.crossing += c.crossing;
     total.blended += c.blended;
+    total.movedToClosest += c.movedToClosest;
   }
   CHECK(total.zones >= 20);
   CHECK(total.sectionFallbacks > 0);  // steep crossings: J's section by the closest point
   CHECK(total.crossing > 0);
+  MESSAGE("elements moved to the closest points of a crossing: " << total.movedToClosest);
+  CHECK(total.movedToClosest > 0);
 }
 
 TEST_CASE("contact detection matches the brute-force reference: nearly parallel fibres") {

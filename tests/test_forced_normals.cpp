@@ -207,7 +207,11 @@ TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' lev
   const double R = 0.1, pMax = 5e-4;
   for (int step = 0; step < 2; ++step) {
     CAPTURE(step);
-    while (w.currentStep() == step) REQUIRE(w.step().status == StepStatus::Converged);
+    StepReport last;
+    while (w.currentStep() == step) {
+      last = w.step();
+      REQUIRE(last.status == StepStatus::Converged);
+    }
     double smallest = 1e300;
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) {
@@ -220,12 +224,16 @@ TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' lev
         CHECK(over * c.fromJtoI.z() > 0.9 * c.distance);
         smallest = std::min(smallest, c.distance);
       }
-    MESSAGE("step " << step << ": closest warp-weft centrelines " << smallest << " mm");
-    // Forced normals hold every crossing within p_max. The normal rules after them do not: with
-    // the particles of eq. 9 the paired sections of a sloped crossing do not face each other and
-    // the crossings sink 5.5 um (docs/CONTACT.md, "Forced normals: measured"); checked here only
-    // against a yarn passing through.
-    CHECK(smallest >= 2 * R - (step == 0 ? pMax : 0.02));
+    MESSAGE("step " << step << ": closest warp-weft centrelines " << smallest
+                    << " mm; the increment reports a deepest penetration of "
+                    << last.contact.maxPenetration << " mm");
+    // Forced normals hold every crossing within p_max. With the normal rules the increment's
+    // deepest penetration is above p_max (one increment for the whole step), but it is the
+    // truth: the centrelines, which do not see the sections' flattening, overlap by at most 1.5x
+    // what the elements report. Before the elements nearest the crossings were moved to the
+    // closest points (docs/CONTACT.md "Crossings in long zones") the overlap was 3.8x that.
+    if (step == 0) CHECK(smallest >= 2 * R - pMax);
+    if (step == 1) CHECK(2 * R - smallest <= 1.5 * last.contact.maxPenetration);
   }
 }
 

@@ -4,7 +4,7 @@
 // every increment converges; two runs from the same seed end in bitwise the same state; after
 // the equilibrium no two fibres overlap by more than p_max, measured from the centrelines and
 // radii (tests/centreline_measure.h, not the contact elements); the crushing force rises
-// monotonically while the gap between the tools exceeds 85% of the initial yarn diameter.
+// monotonically while the gap between the tools exceeds 80% of the initial yarn diameter.
 #include "centreline_measure.h"
 #include "engine/world.h"
 #include "io/scene_loader.h"
@@ -104,16 +104,16 @@ TEST_CASE("twisted yarn procedure: 19 fibres converge, the same seed gives the s
   MESSAGE("largest overlap after the equilibrium: " << overlap << " mm");
   CHECK(overlap <= s.contact.maxPenetration);
 
-  // The crushing force rises while the gap exceeds 85% of the yarn's initial diameter D (the
+  // The crushing force rises while the gap exceeds 80% of the yarn's initial diameter D (the
   // hexagonal section of 19 fibres: 5 across, 4 gaps between them), and the tools do bite.
-  // Not to 80% (the issue's aim): frictionless strings slip sideways from under the cylinders
-  // and the force drops by 5% at a gap of 0.837 D (measured 0.0345 -> 0.0328 N; docs/SCENE.md
-  // "Yarn: the procedure").
+  // With the crush damped at 1e-2 instead of 3e-3 the force fell at 0.837-0.859 D: the viscous
+  // force held the fibres back and the tool force came out high (docs/SCENE.md "Yarn: the
+  // procedure").
   const Json& y = j["generators"][0];
   const double diameter = 10 * double(y["fibre_radius"]) + 4 * double(y["gap"]);  // mm
   for (const CrushPoint& p : a.crush) MESSAGE("gap " << p.gap << " mm, force " << p.force << " N");
   int rising = 0;
-  for (size_t k = 1; k < a.crush.size() && a.crush[k].gap > 0.85 * diameter; ++k) {
+  for (size_t k = 1; k < a.crush.size() && a.crush[k].gap > 0.8 * diameter; ++k) {
     CAPTURE(k);
     // Before the tools touch the yarn both forces are 0; from the touch on, a strict rise.
     if (a.crush[k - 1].force > 0) {
