@@ -115,10 +115,11 @@ std::string contactLines(const World& world) {
   std::string out;
   if (c.fibres)
     out += format("  contact: fibre-fibre, p_max %g mm, mu %g, theta_cross %g deg, "
-                  "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d%s\n",
+                  "theta_parallel %g deg, self-contact %s, loops A <= %d, B <= %d%s%s\n",
                   c.pairs.pMax[0], c.pairs.mu[0], degrees(c.thetaCross), degrees(c.thetaParallel),
                   c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops,
-                  c.followCrossings ? ", crossings follow the closest points" : "");
+                  c.followCrossings ? ", crossings follow the closest points" : "",
+                  c.facingParticles ? ", frictionless forces on facing particles" : "");
   out += lawLine(c);
   if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(s);
   if (c.tools) out += toolLines(world);

@@ -3,6 +3,7 @@
 // the order of their element store). No logic here.
 #pragma once
 
+#include "components/particle_weights.h"
 #include "core/types.h"
 
 #include <Eigen/Core>
@@ -42,6 +43,13 @@ struct ContactForceStore {
   // with the normal linearised (contact.normal_update "newton", fibre-fibre elements; else
   // empty): df/dv and the sections' weights; an element with I.count == 0 uses `stiffness`
   std::vector<NormalJacobian> normalJacobian;
+  // Frictionless fibre-fibre elements with a fixed normal (systems/facing_particles.h): the
+  // particles the force acted on, the points of the two outlines extremal along N at this
+  // evaluation (facing 1; 0: the element's material particles), and the outlines' rolling
+  // stiffness as weights w on the directors with K += w w^T (x) N N^T (sqrt(N/mm), per side).
+  std::vector<std::uint8_t> facing;
+  std::vector<ParticleWeights> facingI, facingJ;
+  std::vector<ParticleWeights> rollingI, rollingJ;
 
   Index size() const { return Index(gap.size()); }
 };

@@ -84,6 +84,9 @@ struct ContactParams {
   bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in
                                 // loop B (systems/crossing_follow.h)
+  bool facingParticles = false; // frictionless elements act on the outlines' points extremal
+                                // along N, taken anew at every evaluation
+                                // (systems/facing_particles.h)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
                                 // systems/tool_detection.h)
 

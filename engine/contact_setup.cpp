@@ -92,6 +92,7 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.frictionTolerance = def.frictionHoldTolerance;
   p.newtonNormals = def.normalUpdate == NormalUpdate::Newton;
   p.followCrossings = def.followCrossings;
+  p.facingParticles = def.facingParticles;
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h
   p.initialPenalty = def.initialPenalty;
   p.penaltyChange = def.penaltyChange;

@@ -3,6 +3,7 @@
 #include "engine/world_state.h"
 #include "systems/boundary.h"
 #include "systems/contact_queries.h"
+#include "systems/facing_particles.h"
 #include "systems/particle.h"
 
 namespace fibra {
@@ -57,7 +58,8 @@ ContactSnapshot World::contactSnapshot() const {
   const ContactElementStore& el = s.elements;
   const ContactForceStore& f = s.forces;
   for (Index e = 0; e < el.size(); ++e)
-    add(particlePosition(w.fibres.q, el.sideI[e]), particlePosition(w.fibres.q, el.sideJ[e]),
+    add(particlePosition(w.fibres.q, forceParticle(el, f, e, 0)),
+        particlePosition(w.fibres.q, forceParticle(el, f, e, 1)),
         el.normal[e], f, e, el.length[e], f.force[e] - f.normalForce[e] * el.normal[e],
         sliding(f.normalForce[e], f.gRev[e], gMax), false, el.fibreI[e], el.fibreJ[e]);
   const ToolContactStore& t = s.toolElements;

@@ -162,7 +162,7 @@ ContactDef readContact(const Json& j, const std::string& path) {
        "regularisation", "initial_penalty", "penalty_change", "penalty_min", "penalty_max", "friction", "max_reversible_slip",
        "friction_tangent", "max_detection_loops", "max_normal_loops", "element_placement",
        "friction_hold_after", "friction_hold_tolerance", "normal_update", "normal_acceleration",
-       "follow_crossings", "pairs"});
+       "follow_crossings", "facing_particles", "pairs"});
   constexpr double kRad = std::numbers::pi / 180;
   ContactDef c;
   c.enabled = f.boolean("enabled", true);  // a contact section means contact unless it says not
@@ -198,6 +198,7 @@ ContactDef readContact(const Json& j, const std::string& path) {
                             c.normalUpdate);
   c.normalAcceleration = f.integer("normal_acceleration", c.normalAcceleration);
   c.followCrossings = f.boolean("follow_crossings", c.followCrossings);
+  c.facingParticles = f.boolean("facing_particles", c.facingParticles);
   if (f.has("pairs"))
     forEachItem(f.at("pairs"), f.path("pairs"), [&](const Json& p, const std::string& at) {
       c.pairs.push_back(readContactPair(p, at));

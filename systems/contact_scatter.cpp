@@ -35,6 +35,22 @@ int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, const Cli
   return n;
 }
 
+// A frictionless element on its facing particles (systems/facing_particles.h): the force and
+// the penalty's stiffness on them, and each outline's rolling stiffness R_N (R / rho) w w^T.
+void scatterFacing(const ContactForceStore& f, Index e, Index clique, const CliqueSlots& slots,
+                   bool withTangent, LinearSystem& ls) {
+  const double sign[2] = {1, -1}, one = 1;
+  const ParticleWeights sides[2] = {f.facingI[e], f.facingJ[e]};
+  scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], clique, withTangent, ls, &slots);
+  if (!withTangent) return;
+  const Eigen::Matrix3d S = f.normalForce[e] * f.normal[e] * f.normal[e].transpose();
+  const ParticleWeights* rolling[2] = {&f.rollingI[e], &f.rollingJ[e]};
+  for (int s = 0; s < 2; ++s) {
+    const CliqueSlots side{{slots.first[s], 0}, slots.nodes};
+    scatterContact(rolling[s], &one, 1, Vec3::Zero(), S, clique, true, ls, &side);
+  }
+}
+
 }  // namespace
 
 void scatterLinearisedContact(const ParticleWeights side[2], const NormalJacobian& jac,
@@ -81,12 +97,15 @@ void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore
         const CliqueSlots slots{
             {int(sides[0].firstNode - l[0]), int(l[1] + sides[1].firstNode - l[2])},
             int(l[1] + l[3])};
-        if (!f.normalJacobian.empty() && f.normalJacobian[e].I.count > 0)
+        if (!f.normalJacobian.empty() && f.normalJacobian[e].I.count > 0) {
           scatterLinearisedContact(sides, f.normalJacobian[e], f.force[e], c.firstClique + q,
                                    slots, rangeFirst, input.withTangent, ls);
-        else
+        } else if (f.facing[e]) {
+          scatterFacing(f, e, c.firstClique + q, slots, input.withTangent, ls);
+        } else {
           scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], c.firstClique + q,
                          input.withTangent, ls, &slots);
+        }
       }
     });
   }

@@ -9,7 +9,8 @@
 //   IterationInput; writes LinearSystem r, K, serially in element order (tool contacts are few);
 //   the clique of a tool element is its beam element's.
 // Both skip elements without normal force. A fibre element with a linearised normal goes
-// through scatterLinearisedContact.
+// through scatterLinearisedContact; one on facing particles (ContactForceStore::facing) acts on
+// them, and adds each outline's rolling stiffness (systems/facing_particles.h).
 //
 // One element (scatterContact below):
 // A contact element acts on the relative position d = sum_s sign_s x_s of its particles

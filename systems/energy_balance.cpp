@@ -1,5 +1,7 @@
 #include "systems/energy_balance.h"
 
+#include "systems/facing_particles.h"
+
 namespace fibra {
 namespace {
 
@@ -15,7 +17,8 @@ void contactForces(const ContactState& c, EnergyForces& out) {
   for (Index e = 0; e < el.size() && e < c.forces.size(); ++e) {
     const Vec3 normal = c.forces.normalForce[e] * c.forces.normal[e];
     const Vec3 friction = c.forces.force[e] - normal;
-    for (auto [side, sign] : {std::pair{&el.sideI[e], 1.0}, std::pair{&el.sideJ[e], -1.0}}) {
+    const ParticleWeights &I = forceParticle(el, c.forces, e, 0), &J = forceParticle(el, c.forces, e, 1);
+    for (auto [side, sign] : {std::pair{&I, 1.0}, std::pair{&J, -1.0}}) {
       addParticleForce(*side, normal, sign, out.normal);
       addParticleForce(*side, friction, sign, out.friction);
     }

@@ -1,6 +1,7 @@
 #include "systems/fibre_contact_law.h"
 
 #include "systems/contact_law.h"
+#include "systems/facing_particles.h"
 #include "systems/friction_status.h"
 #include "systems/normal_linearisation.h"
 #include "systems/particle.h"
@@ -8,6 +9,15 @@
 #include <tbb/parallel_for.h>
 
 namespace fibra {
+namespace {
+
+// With contact.facing_particles: frictionless, a fixed normal, no end face.
+bool facingElement(const ContactParams& p, const ContactElementStore& el, Index e,
+                   const ContactLawParams& law) {
+  return p.facingParticles && !(law.mu > 0) && !(el.fallback[e] & (kEndFaceI | kEndFaceJ));
+}
+
+}  // namespace
 
 void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const ZoneStore& zones,
                            const ContactElementStore& el, const IterationInput& input,
@@ -24,6 +34,20 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
           linearisedContact(fs, fs.q, el, e, law, p.thetaParallel, p.thetaCross);
       storeContactLaw(c.law, e, out);
       out.normalJacobian[e] = c.jacobian;
+      return;
+    }
+    out.facing[e] = 0;
+    FacingSide I, J;
+    if (facingElement(p, el, e, law) &&
+        facingSide(fs.q, el.sideI[e], fs.radius[el.fibreI[e]], -el.normal[e], I) &&
+        facingSide(fs.q, el.sideJ[e], fs.radius[el.fibreJ[e]], el.normal[e], J)) {
+      const ContactLawResult r = contactLaw(I.position - J.position,
+                                            {el.normal[e], el.d0[e], el.gRev0[e]}, law,
+                                            p.symmetrised, status.held[e]);
+      storeContactLaw(r, e, out);
+      out.facing[e] = 1;
+      out.facingI[e] = I.particle, out.facingJ[e] = J.particle;
+      out.rollingI[e] = I.rolling, out.rollingJ[e] = J.rolling;
       return;
     }
     const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
