@@ -46,7 +46,8 @@ struct ContactForceStore {
   // Frictionless fibre-fibre elements with a fixed normal (systems/facing_particles.h): the
   // particles the force acted on, the points of the two outlines extremal along N at this
   // evaluation (facing 1; 0: the element's material particles), and the outlines' rolling
-  // stiffness as weights w on the directors with K += w w^T (x) N N^T (sqrt(N/mm), per side).
+  // stiffness as weights c = sqrt(R / rho) N_a v on the directors (sqrt(mm), per side), with
+  // K += R_N (c (x) N)(c (x) N)^T.
   std::vector<std::uint8_t> facing;
   std::vector<ParticleWeights> facingI, facingJ;
   std::vector<ParticleWeights> rollingI, rollingJ;

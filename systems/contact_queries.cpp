@@ -1,6 +1,7 @@
 #include "systems/contact_queries.h"
 
 #include "systems/contact_geometry.h"
+#include "systems/facing_particles.h"
 #include "systems/particle.h"
 
 #include <algorithm>
@@ -16,9 +17,12 @@ double stepLimit(const ContactParams& p, const ContactState& s, const Eigen::Vec
     if (dg < 0) a = std::min(a, std::max(gap + allowed, allowed) / -dg);
   };
   const ContactElementStore& el = s.elements;
+  // The gap's change along the particles the force acted on (an element on facing particles:
+  // theirs, systems/facing_particles.h, whose weights are dg/dq).
   for (Index e = 0; e < el.size(); ++e)
     limit(s.forces.gap[e], s.zones.pMax[el.zone[e]],
-          el.normal[e].dot(particlePosition(dq, el.sideI[e]) - particlePosition(dq, el.sideJ[e])));
+          el.normal[e].dot(particlePosition(dq, forceParticle(el, s.forces, e, 0)) -
+                           particlePosition(dq, forceParticle(el, s.forces, e, 1))));
   const ToolContactStore& t = s.toolElements;
   for (Index i = 0; i < t.size(); ++i)
     limit(s.toolForces.gap[i], s.toolZones.pMax[t.zone[i]],

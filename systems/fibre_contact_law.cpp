@@ -29,6 +29,7 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
     const Index z = el.zone[e];
     const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
                                zones.friction[z] * p.frictionFactor, p.gMax};
+    out.facing[e] = 0;  // also for a linearised element: the store keeps an index's old entry
     if (linearisedNormal(p, el, e)) {
       const LinearisedContact c =
           linearisedContact(fs, fs.q, el, e, law, p.thetaParallel, p.thetaCross);
@@ -36,7 +37,6 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
       out.normalJacobian[e] = c.jacobian;
       return;
     }
-    out.facing[e] = 0;
     FacingSide I, J;
     if (facingElement(p, el, e, law) &&
         facingSide(fs.q, el.sideI[e], fs.radius[el.fibreI[e]], -el.normal[e], I) &&

@@ -158,6 +158,17 @@ TEST_CASE("frictionless contact acts on facing particles: the true gap, no torqu
     const Eigen::MatrixXd K = Eigen::MatrixXd(w.system.K).selfadjointView<Eigen::Upper>();
     const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
     CHECK((K - Kfd).norm() <= 1e-7 * K.norm());
+    // Newton's step limit measures the gap's change on the facing particles (dg/dq), not on
+    // the spun material ones: a step closing by 10x what it allows is cut to 0.1.
+    Eigen::VectorXd dq = Eigen::VectorXd::LinSpaced(w.fibres.q.size(), -1, 1).array().sin();
+    const auto closing = [&](const ParticleWeights& a, const ParticleWeights& b) {
+      return N.dot(particlePosition(dq, a) - particlePosition(dq, b));
+    };
+    if (closing(f.facingI[0], f.facingJ[0]) > 0) dq = -dq;
+    const double allowed = w.contact.stepPenetration * w.trial.zones.pMax[el.zone[0]];
+    dq *= 10 * std::max(f.gap[0] + allowed, allowed) / -closing(f.facingI[0], f.facingJ[0]);
+    CHECK(std::abs(closing(el.sideI[0], el.sideJ[0]) / closing(f.facingI[0], f.facingJ[0]) - 1) > 1e-3);
+    CHECK(stepLimit(w.contact, w.trial, dq) == doctest::Approx(0.1).epsilon(1e-12));
   }
   // Off (the default): the material particles, as before.
   WorldState w;
