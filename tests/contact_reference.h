@@ -413,9 +413,9 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   for (auto [zeta, length] : placed)
     out.push_back(element(zeta, length, placed.size() == 1 && I != J, nullptr, curvature));
   // A crossing in a zone of several elements (docs/CONTACT.md "Crossings in long zones"): the
-  // closest points from the sections at zeta = 1/2; when a penetration p_max there spans less
-  // than half the element spacing h_min / 2 (l = sqrt(2 (R_I + R_J) p_max / lambda_min)), the
-  // element whose zeta is nearest theirs takes them.
+  // closest points from the sections at zeta = 1/2; when the patch a penetration p_max spans
+  // there, 2 l with l = sqrt(2 (R_I + R_J) p_max / lambda_min) (mm), is shorter than the element
+  // spacing h_min / 2, the element whose zeta is nearest theirs takes them.
   if (placed.size() > 1 && I != J) {
     const Element mid = element(0.5, 0, true, nullptr, curvature);
     const double hMin = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
