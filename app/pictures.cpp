@@ -165,6 +165,8 @@ int section(int argc, char** argv) {
   const Arguments a = parse(argc, argv, {"--plane", "--frame", "--out", "--title"});
   SectionPlot p;
   if (a.values.count("--plane")) parsePlane(a.get("--plane"), p);
+  if (a.values.count("--frame") && a.get("--frame").empty())
+    throw std::invalid_argument("--frame: expected frame numbers (0, 1, ...) or last, got ''");
   const std::vector<int> frames = parseFrames(a.get("--frame"));
   const std::string png = pngPath(a, "section.png");
   p.title = a.get("--title");

@@ -383,6 +383,7 @@ TEST_CASE("plot and section: gnuplot missing or bad usage are clear errors") {
            {{"section", dir / "run", "--plane", "w=1"}, "--plane: expected x, y or z"},
            {{"section", dir / "run", "--plane", "z=abc"}, "--plane: expected x, y or z"},
            {{"section", dir / "run", "--frame", "-2"}, "--frame: expected frame numbers"},
+           {{"section", dir / "run", "--frame", ""}, "--frame: expected frame numbers"},
            {{"section", dir / "run", "--colour", "red"}, "section: unknown option '--colour'"}}) {
     const RunResult r = runFibra(args, dir);
     CHECK_MESSAGE(r.status == 2, r.output);
