@@ -43,11 +43,11 @@ struct ContactForceStore {
   // with the normal linearised (contact.normal_update "newton", fibre-fibre elements; else
   // empty): df/dv and the sections' weights; an element with I.count == 0 uses `stiffness`
   std::vector<NormalJacobian> normalJacobian;
-  // Frictionless fibre-fibre elements with a fixed normal (systems/facing_particles.h): the
-  // particles the force acted on, the points of the two outlines extremal along N at this
-  // evaluation (facing 1; 0: the element's material particles), and the outlines' rolling
-  // stiffness as weights c = sqrt(R / rho) N_a v on the directors (sqrt(mm), per side), with
-  // K += R_N (c (x) N)(c (x) N)^T.
+  // With contact.facing_particles (else empty), frictionless fibre-fibre elements with a fixed
+  // normal (systems/facing_particles.h): the particles the force acted on, the points of the two
+  // outlines extremal along N at this evaluation (facing 1; 0: the element's material
+  // particles), and the outlines' rolling stiffness as weights c = sqrt(R / rho) N_a v on the
+  // directors (sqrt(mm), per side), with K += R_N (c (x) N)(c (x) N)^T.
   std::vector<std::uint8_t> facing;
   std::vector<ParticleWeights> facingI, facingJ;
   std::vector<ParticleWeights> rollingI, rollingJ;

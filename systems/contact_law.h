@@ -107,6 +107,8 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
 inline void resizeContactForces(ContactForceStore& f, Index n) {
   resizeColumns(f, n);
   f.normalJacobian.clear();
+  for (auto* side : {&f.facingI, &f.facingJ, &f.rollingI, &f.rollingJ}) side->clear();
+  f.facing.clear();
 }
 
 // Element e's entries of a force store.

@@ -100,7 +100,7 @@ void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore
         if (!f.normalJacobian.empty() && f.normalJacobian[e].I.count > 0) {
           scatterLinearisedContact(sides, f.normalJacobian[e], f.force[e], c.firstClique + q,
                                    slots, rangeFirst, input.withTangent, ls);
-        } else if (f.facing[e]) {
+        } else if (!f.facing.empty() && f.facing[e]) {
           scatterFacing(f, e, c.firstClique + q, slots, input.withTangent, ls);
         } else {
           scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], c.firstClique + q,

@@ -45,7 +45,7 @@ bool facingSide(const Eigen::VectorXd& q, const ParticleWeights& material, doubl
 // its material particles (side 0: I, 1: J).
 inline const ParticleWeights& forceParticle(const ContactElementStore& el,
                                             const ContactForceStore& f, Index e, int side) {
-  if (e < f.size() && f.facing[e]) return side == 0 ? f.facingI[e] : f.facingJ[e];
+  if (e < Index(f.facing.size()) && f.facing[e]) return side == 0 ? f.facingI[e] : f.facingJ[e];
   return side == 0 ? el.sideI[e] : el.sideJ[e];
 }
 

@@ -11,7 +11,8 @@
 namespace fibra {
 namespace {
 
-// With contact.facing_particles: frictionless, a fixed normal, no end face.
+// With contact.facing_particles (the facing columns then sized): frictionless, a fixed normal,
+// no end face.
 bool facingElement(const ContactParams& p, const ContactElementStore& el, Index e,
                    const ContactLawParams& law) {
   return p.facingParticles && !(law.mu > 0) && !(el.fallback[e] & (kEndFaceI | kEndFaceJ));
@@ -25,11 +26,15 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
   resizeContactForces(out, el.size());
   sizeFrictionStatus(status, el.size());
   if (p.newtonNormals) out.normalJacobian.resize(el.size());
+  if (p.facingParticles) {  // only then: five columns per element a scene without it skips
+    out.facing.assign(el.size(), 0);
+    for (auto* side : {&out.facingI, &out.facingJ, &out.rollingI, &out.rollingJ})
+      side->resize(el.size());
+  }
   tbb::parallel_for(Index(0), el.size(), [&](Index e) {
     const Index z = el.zone[e];
     const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
                                zones.friction[z] * p.frictionFactor, p.gMax};
-    out.facing[e] = 0;  // also for a linearised element: the store keeps an index's old entry
     if (linearisedNormal(p, el, e)) {
       const LinearisedContact c =
           linearisedContact(fs, fs.q, el, e, law, p.thetaParallel, p.thetaCross);
