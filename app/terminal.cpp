@@ -37,10 +37,13 @@ std::string lawLine(const ContactParams& c) {
                            c.symmetrised ? "symmetrised" : "consistent");
   if (c.fibres) out += format(", element placement %s, normals %s",
                               c.weightedElements ? "weighted" : "paper",
-                              c.newtonNormals ? "linearised in Newton" : "updated by loop B");
-  if (c.fibres && !c.newtonNormals)
+                              c.newtonNormals && !c.newtonFrictionlessOnly ? "linearised in Newton"
+                                                                           : "updated by loop B");
+  if (c.fibres && (!c.newtonNormals || c.newtonFrictionlessOnly))
     out += c.normalMemory > 0 ? format(" (Anderson memory %d when unstable)", c.normalMemory)
                               : std::string(" (plain)");
+  if (c.fibres && c.newtonFrictionlessOnly)
+    out += ", frictionless parallel normals linearised in Newton once loop B diverges";
   if (c.mu > 0 || c.tools)  // friction is possible (tools carry their own mu)
     out += c.frictionFlips > 0 ? format(", stick/slip held after %d changes (tolerance %g)",
                                         c.frictionFlips, c.frictionTolerance)

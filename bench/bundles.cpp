@@ -13,7 +13,7 @@
 //                       [--pmax 5e-4,1e-4] [--elements N] [--threads N] [--line-search on|off]
 //                       [--damping C]  (viscous continuation on every step, StepDef::damping)
 //                       [--hold-after N]  (contact.friction_hold_after; 0: statuses never held)
-//                       [--normal-update newton|loop]
+//                       [--normal-update newton|loop|newton_frictionless]
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -112,12 +112,16 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--damping")) damping = std::atof(argv[i + 1]);
     if (!std::strcmp(argv[i], "--hold-after")) holdAfter = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--normal-update"))
-      normalUpdate = std::strcmp(argv[i + 1], "loop") ? NormalUpdate::Newton : NormalUpdate::Loop;
+      normalUpdate = !std::strcmp(argv[i + 1], "loop")     ? NormalUpdate::Loop
+                     : !std::strcmp(argv[i + 1], "newton") ? NormalUpdate::Newton
+                                                           : NormalUpdate::NewtonFrictionless;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::printf("threads %d, line search %s, damping %g, friction_hold_after %d, normal update %s\n\n",
               def.threads, lineSearch ? "on" : "off", damping, holdAfter,
-              normalUpdate == NormalUpdate::Loop ? "loop" : "newton");
+              normalUpdate == NormalUpdate::Loop     ? "loop"
+              : normalUpdate == NormalUpdate::Newton ? "newton"
+                                                     : "newton_frictionless");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
               "per increment, mean / max | cutbacks | viscous force, max | held statuses, max | "
               "wall s | %% asm / fac / sol / other |\n");

@@ -81,6 +81,9 @@ struct ContactParams {
                                     // of the slip circle |t| = g_T,max (systems/friction_status.h)
   bool newtonNormals = false;   // fibre-fibre normals follow the state inside Newton, linearised
                                 // (systems/normal_linearisation.h); false: fixed per pass, loop B
+  bool newtonFrictionlessOnly = false;  // with newtonNormals: only the parallel elements (eq. 10
+                                        // crossing weight 0) of frictionless pairs, once loop B
+                                        // diverged (systems/normal_linearisation.h)
   bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in
                                 // loop B (systems/crossing_follow.h)
@@ -113,6 +116,8 @@ struct ContactParams {
   // --- forced normals of the current step (StepDef::forcedNormal; set by the step driver) ---
   Vec3 forcedNormal = Vec3::Zero();  // unit; zero: the normal rules of eq. 10
   double frictionFactor = 1;  // the current step's factor on every mu (StepDef::frictionFactor)
+  bool unstableNormals = false;  // loop B's update of the normals diverged in this attempt (set
+                                 // by the contact loops, cleared by the step driver)
 };
 
 }  // namespace fibra

@@ -42,7 +42,8 @@ struct ContactReport {
   int normalLoops = 0;         // loop B iterations, summed over loop A
   int normalMixes = 0;         // of them, normal updates replaced by the Anderson-mixed normals
   int restarts = 0;            // loop A passes restarted from the increment's start because the
-                               // previous pass penetrated deeply where it had no element
+                               // previous pass penetrated deeply where it had no element, or
+                               // its loop B diverged ("newton_frictionless" then linearises)
   int zones = 0;               // proximity zones (fibre-fibre)
   int elements = 0;            // fibre-fibre contact elements
   int toolElements = 0;        // fibre-tool contact elements

@@ -6,6 +6,7 @@
 #include "systems/contact_queries.h"
 #include "systems/friction_status.h"
 #include "systems/normal_acceleration.h"
+#include "systems/normal_linearisation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +25,13 @@ double largestMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& q0) {
   double m = 0;
   for (Index n = 0; n < Index(q.size() / kNodeDofs); ++n) m = std::max(m, (x0Of(q, n) - x0Of(q0, n)).norm());
   return m;
+}
+
+// Whether the trial set has an element whose normal "newton_frictionless" would linearise.
+bool anyFrictionlessParallel(const WorldState& w) {
+  for (Index e = 0; e < w.trial.elements.size(); ++e)
+    if (linearisableNormal(w.contact, w.trial.elements, e)) return true;
+  return false;
 }
 
 NewtonResult cancelled(NewtonResult nr) {
@@ -111,6 +119,10 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
     if (b == s.maxNormalLoops) break;
     runStage(w, w.pipeline.normals, tTry);
     const bool mixed = mixer.record(w.trial.elements);
+    // Diverging with frictionless parallel elements: their normals go into Newton from now on.
+    if (s.newtonFrictionlessOnly && !s.unstableNormals && mixer.unstable() &&
+        anyFrictionlessParallel(w))
+      w.contact.unstableNormals = true;
     const bool moved = w.fibreStats.crossingShift > s.particleTolerance * minRadius(w.fibres);
     if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance &&
         switched == 0 && !moved)
@@ -186,9 +198,25 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
   Eigen::VectorXd qDetected = w.fibres.q;
   if (!detect(w, w.time, report)) return cancelled(nr);
   applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+  bool linearised = s.unstableNormals;
   for (int a = 1; a <= s.maxDetectionLoops; ++a) {
     report.detectionLoops = a;
     nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);
+    if (!linearised && s.unstableNormals) {
+      // Loop B diverged ("newton_frictionless"): the fibres have left along the unstable mode;
+      // the increment starts again from its start with the frictionless parallel normals
+      // linearised, so that Newton seeks the equilibrium the fixed point could not hold.
+      linearised = true;
+      w.fibres.q = qEntry;
+      w.trial = w.committed;
+      qDetected = qEntry;
+      setSymmetric(w, symmetricTangent(w));  // non-symmetric from now on
+      if (!detect(w, w.time, report)) return cancelled(nr);
+      applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+      ++report.restarts;
+      a = 0;
+      continue;
+    }
     if (nr.outcome != NewtonOutcome::Converged) return nr;
     // The penalties this pass was solved with; the adapted ones serve the next pass only.
     const std::vector<double> zonePenalty = w.trial.zones.penalty;

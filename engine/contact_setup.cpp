@@ -90,7 +90,8 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
                      std::to_string(def.normalAcceleration));
   p.frictionFlips = def.frictionHoldAfter;
   p.frictionTolerance = def.frictionHoldTolerance;
-  p.newtonNormals = def.normalUpdate == NormalUpdate::Newton;
+  p.newtonNormals = def.normalUpdate != NormalUpdate::Loop;
+  p.newtonFrictionlessOnly = def.normalUpdate == NormalUpdate::NewtonFrictionless;
   p.followCrossings = def.followCrossings;
   p.facingParticles = def.facingParticles;
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h

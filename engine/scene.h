@@ -175,8 +175,10 @@ enum class FrictionTangent { Consistent, Symmetrised };
 // element ends, weighted (uniform line force), or equally spaced with equal penalties (eq. 7).
 enum class ElementPlacement { Weighted, Paper };
 // How fibre-fibre normals follow the state: recomputed at every Newton assembly with their
-// derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop).
-enum class NormalUpdate { Newton, Loop };
+// derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop), or
+// Loop until loop B diverges in an increment, which then starts again with the normals of its
+// frictionless parallel elements as Newton (NewtonFrictionless; docs/CONTACT.md section 1.5).
+enum class NormalUpdate { Newton, Loop, NewtonFrictionless };
 // The largest Anderson memory of loop B (contact `normal_acceleration`).
 inline constexpr int kMaxNormalAcceleration = 10;
 
@@ -223,7 +225,7 @@ struct ContactDef {
                                       // its status is held for the pass (0: never; <= 255)
   double frictionHoldTolerance = 0.01;  // a held status is consistent within this relative
                                         // distance of the slip circle (friction force error)
-  NormalUpdate normalUpdate = NormalUpdate::Loop;
+  NormalUpdate normalUpdate = NormalUpdate::NewtonFrictionless;
   int normalAcceleration = 3;         // Anderson memory of loop B on the normals, passes (0: the
                                       // plain update; <= 10)
   bool followCrossings = false;       // frictionless crossings' sections follow the closest

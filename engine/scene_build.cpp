@@ -9,6 +9,7 @@
 #include "systems/beam_evaluation.h"
 #include "systems/beam_section.h"
 #include "systems/boundary.h"
+#include "systems/contact_params.h"
 #include "systems/energy_balance.h"
 #include "systems/sparse_pattern.h"
 
@@ -213,6 +214,17 @@ void checkTorsionFree(const SceneDef& s) {
 
 }  // namespace
 
+bool symmetricTangent(const WorldState& w) {
+  const bool linearised = w.contact.fibres && normalsInNewton(w.contact);
+  return !linearised && (!hasFriction(w) || w.contact.symmetrised);
+}
+
+void setSymmetric(WorldState& w, bool symmetric) {
+  if (w.system.symmetric == symmetric) return;
+  w.system.symmetric = symmetric;
+  w.cliques.colourFirst.clear();  // the next detection rebuilds the pattern (a new analysis)
+}
+
 void buildWorld(WorldState& w) {
   if (w.scene.units != "mm-N-MPa")
     throw SceneError("units: only \"mm-N-MPa\" is supported, got \"" + w.scene.units + "\"");
@@ -255,9 +267,9 @@ void buildWorld(WorldState& w) {
   buildContact(w);
   buildStabilisation(w);
   // A linearised normal makes the fibre-fibre tangent non-symmetric (and, on an unstable
-  // equilibrium, indefinite): sparse LU (systems/linear_solver.h).
-  const bool newtonNormals = w.contact.fibres && w.contact.newtonNormals;
-  w.system.symmetric = !newtonNormals && (!hasFriction(w) || w.contact.symmetrised);
+  // equilibrium, indefinite): sparse LU (systems/linear_solver.h). The step driver sets it again
+  // at every attempt; the contact loops clear it when they linearise ("newton_frictionless").
+  w.system.symmetric = symmetricTangent(w);
 
   numberEquations(w.fibres, w.constraints, w.system);
   w.arena->execute([&] { buildPattern(w.fibres, beamCliques(w.fibres), w.system); });

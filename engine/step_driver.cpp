@@ -99,6 +99,8 @@ void beginAttempt(WorldState& w, const StepDef& st, double size) {
   if (hasContact(w)) w.trial = w.committed;
   w.contact.forcedNormal = st.forcedNormal;
   w.contact.frictionFactor = st.frictionFactor;
+  w.contact.unstableNormals = false;
+  setSymmetric(w, symmetricTangent(w));
   w.stabilisation.qStart = w.fibres.q;
   w.stabilisation.viscous = st.damping / size;
 }

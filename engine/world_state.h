@@ -88,6 +88,14 @@ inline bool hasFriction(const WorldState& w) {
   return any;
 }
 
+// Whether the tangent is symmetric (its upper triangle stored, CHOLMOD): no friction (or its
+// symmetrised tangent) and no linearised normal (contact normal_update "newton"; with
+// "newton_frictionless" only once loop B diverged in the attempt, ContactParams::unstableNormals).
+bool symmetricTangent(const WorldState& w);
+
+// Sets LinearSystem::symmetric; a change rebuilds the pattern at the next detection.
+void setSymmetric(WorldState& w, bool symmetric);
+
 // Builds every store from a scene (throws SceneError on unresolved names or bad geometry).
 void buildWorld(WorldState& w);
 

@@ -194,7 +194,9 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.frictionHoldAfter = f.integer("friction_hold_after", c.frictionHoldAfter);
   c.frictionHoldTolerance = f.number("friction_hold_tolerance", c.frictionHoldTolerance);
   c.normalUpdate = f.choice("normal_update",
-                            {{"newton", NormalUpdate::Newton}, {"loop", NormalUpdate::Loop}},
+                            {{"newton", NormalUpdate::Newton},
+                             {"loop", NormalUpdate::Loop},
+                             {"newton_frictionless", NormalUpdate::NewtonFrictionless}},
                             c.normalUpdate);
   c.normalAcceleration = f.integer("normal_acceleration", c.normalAcceleration);
   c.followCrossings = f.boolean("follow_crossings", c.followCrossings);

@@ -1,6 +1,7 @@
 #include "systems/contact_cliques.h"
 
 #include "systems/contact_geometry.h"
+#include "systems/contact_params.h"
 #include "systems/sparse_pattern.h"
 
 #include <tbb/parallel_for.h>
@@ -15,7 +16,7 @@ namespace {
 // other element of a node-averaged section tangent, with linearised normals only.
 std::uint64_t widening(const FibreStore& fs, const ContactParams& p, Index f, double s,
                        Index element) {
-  if (!p.newtonNormals) return 0;
+  if (!normalsInNewton(p)) return 0;
   const Index node = interiorNodeAt(fs, f, s);
   if (node < 0) return 0;
   const Index after = fs.firstElement[f] + node;  // the element starting at the node

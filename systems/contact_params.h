@@ -25,6 +25,13 @@ inline int testIntervalsPerElement(const FibreStore& fs, const ContactParams& p,
   return std::max(1, int(std::ceil(h / l * (1 - 1e-12))));
 }
 
+// Whether fibre-fibre normals may be linearised in Newton now: contact normal_update "newton",
+// or "newton_frictionless" once loop B diverged in this attempt (systems/normal_linearisation.h
+// says which elements).
+inline bool normalsInNewton(const ContactParams& p) {
+  return p.newtonNormals && (!p.newtonFrictionlessOnly || p.unstableNormals);
+}
+
 // Pair-class index of fibres I and J (ContactClasses::mu, pMax).
 inline int pairClass(const ContactParams& p, Index I, Index J) {
   const ContactClasses& c = p.pairs;

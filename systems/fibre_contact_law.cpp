@@ -1,6 +1,7 @@
 #include "systems/fibre_contact_law.h"
 
 #include "systems/contact_law.h"
+#include "systems/contact_params.h"
 #include "systems/facing_particles.h"
 #include "systems/friction_status.h"
 #include "systems/normal_linearisation.h"
@@ -25,7 +26,7 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
                            FrictionStatusStore& status, ContactForceStore& out) {
   resizeContactForces(out, el.size());
   sizeFrictionStatus(status, el.size());
-  if (p.newtonNormals) out.normalJacobian.resize(el.size());
+  if (normalsInNewton(p)) out.normalJacobian.resize(el.size());
   if (p.facingParticles) {  // only then: five columns per element a scene without it skips
     out.facing.assign(el.size(), 0);
     for (auto* side : {&out.facingI, &out.facingJ, &out.rollingI, &out.rollingJ})

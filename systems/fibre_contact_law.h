@@ -16,7 +16,8 @@
 // fixed normal and no end face acts on its facing particles instead (systems/facing_particles.h:
 // the outlines' points extremal along N, taken anew each time).
 // With ContactParams::newtonNormals (contact `normal_update` "newton"), every element whose
-// normal is neither forced nor an end face's recomputes N from the state and is linearised in it
+// normal is neither forced nor an end face's (with "newton_frictionless": every frictionless
+// parallel element, once loop B diverged) recomputes N from the state and is linearised in it
 // (systems/normal_linearisation.h: ContactForceStore::normalJacobian); the others keep the
 // fixed-normal law (their NormalJacobian has I.count == 0).
 // Threading: parallel over elements, each writing its own entries. Runs beside the beam

@@ -64,7 +64,6 @@ std::vector<Index> loopNormalElements(const ContactParams& p, const ContactEleme
 }
 
 void NormalMixer::follow(const ContactParams& p, const ContactElementStore& el, double reach) {
-  if (!on_) return;
   std::vector<Index> which = loopNormalElements(p, el);
   bool same = which.size() == which_.size() && used_.size() == Index(3 * which.size());
   for (std::size_t i = 0; same && i < which.size(); ++i) {
@@ -94,11 +93,12 @@ Eigen::VectorXd NormalMixer::stacked(const ContactElementStore& el) const {
 }
 
 bool NormalMixer::record(const ContactElementStore& el) {
-  if (!on_ || which_.empty()) return false;
+  if (which_.empty()) return false;
   const Eigen::VectorXd plain = stacked(el);
   const double turn = (plain - used_).lpNorm<Eigen::Infinity>();
   unstable_ = unstable_ || (lastTurn_ > kTurnFloor && turn > kGrowth * lastTurn_);
   lastTurn_ = turn;
+  if (!on_) return false;  // memory 0: instability only watched (unstable())
   const AndersonMixer::Split s = mixer_.split(used_, plain);
   if (mixer_.used() == 0 || !unstable_) return false;
   // The step along what the secant cannot explain, limited to a probe.

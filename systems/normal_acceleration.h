@@ -66,6 +66,10 @@ class NormalMixer {
   // The prepared iterate put in place of the update, with the gaps at q and g_rev,0 to match.
   void apply(const FibreStore& fs, const Eigen::VectorXd& q, ContactElementStore& el) const;
 
+  // Whether an update since the last change of elements turned the normals kGrowth x further
+  // than the one before (the fixed point diverges).
+  bool unstable() const { return unstable_; }
+
  private:
   Eigen::VectorXd stacked(const ContactElementStore& el) const;
 

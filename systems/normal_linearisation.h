@@ -38,13 +38,27 @@
 
 namespace fibra {
 
+// Element e is parallel (eq. 10 crossing weight 0: the normal follows the centres' offset) and
+// frictionless (its pair class's mu x the step's friction factor is 0): a fibre lying on it is
+// laterally unstable under load, and only friction or the normal's derivative holds it.
+inline bool frictionlessParallel(const ContactParams& p, const ContactElementStore& el, Index e) {
+  return !(el.crossWeight[e] > 0) &&
+         !(p.pairs.mu[pairClass(p, el.fibreI[e], el.fibreJ[e])] * p.frictionFactor > 0);
+}
+
 // Whether element e's normal follows the state in Newton: contact `normal_update` "newton", a
 // normal that is not forced (constant) and not an end face's (kEndFaceI/J: N through the face
 // particle, kept fixed in a pass and updated by loop B as with "loop": linearised, the end of a
 // cantilever sliding off a crossing fibre's flank diverges where the fixed point converges).
+// With newtonFrictionlessOnly ("newton_frictionless") only frictionlessParallel elements, and
+// only once loop B diverged (unstableNormals): linearisable says which they would be.
+inline bool linearisableNormal(const ContactParams& p, const ContactElementStore& el, Index e) {
+  return !(el.fallback[e] & (kEndFaceI | kEndFaceJ)) &&
+         !forcedSign(p, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]) &&
+         (!p.newtonFrictionlessOnly || frictionlessParallel(p, el, e));
+}
 inline bool linearisedNormal(const ContactParams& p, const ContactElementStore& el, Index e) {
-  return p.newtonNormals && !(el.fallback[e] & (kEndFaceI | kEndFaceJ)) &&
-         !forcedSign(p, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]);
+  return normalsInNewton(p) && linearisableNormal(p, el, e);
 }
 
 struct LinearisedContact {

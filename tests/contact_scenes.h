@@ -111,15 +111,19 @@ inline SceneDef parallelBeams(double w, double pMax, int elements = 16) {
 // clamped parallel fibre D under q = 1 N/mm, p_max = 5e-4 mm; U is held laterally (y) at both
 // ends and axially (x) at its start. The lateral gain of plain loop B is ~ q / (2 R K) with K
 // U's lateral bending stiffness EI (pi / L)^4 ~ 0.024 N/mm^2 (E 4000 MPa): ~ 200 at full load.
-inline std::string heavyLineContact(const std::string& contactExtra) {
+// length: mm, and elements per fibre (10: the shared case line_contact_heavy).
+inline std::string heavyLineContact(const std::string& contactExtra, int length = 6) {
+  const std::string n = std::to_string(length), h = std::to_string(length / 2.0);
   return R"({
     "units": "mm-N-MPa",
     "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
     "fibres": [
-      {"name": "U", "material": "m", "radius": 0.1, "elements": 6, "order": 2,
-       "geometry": {"type": "line", "points": [[-3, 0, 0.2], [3, 0, 0.2]], "director": [0, 0, 1]}},
-      {"name": "D", "material": "m", "radius": 0.1, "elements": 6, "order": 2,
-       "geometry": {"type": "line", "points": [[-3, 0, 0], [3, 0, 0]], "director": [0, 0, 1]}}],
+      {"name": "U", "material": "m", "radius": 0.1, "elements": )" + n + R"(, "order": 2,
+       "geometry": {"type": "line", "points": [[-)" + h + R"(, 0, 0.2], [)" + h + R"(, 0, 0.2]],
+                    "director": [0, 0, 1]}},
+      {"name": "D", "material": "m", "radius": 0.1, "elements": )" + n + R"(, "order": 2,
+       "geometry": {"type": "line", "points": [[-)" + h + R"(, 0, 0], [)" + h + R"(, 0, 0]],
+                    "director": [0, 0, 1]}}],
     "boundary_conditions": [
       {"type": "fix", "group": "U.start", "dofs": ["x", "y", "g1y"]},
       {"type": "fix", "group": "U.end", "dofs": ["y"]},

@@ -62,7 +62,8 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
        {"  contact: fibre-fibre, p_max 0.0005 mm, mu 0, theta_cross 20 deg, ",
         "  contact law: penalty 1 .. 10000 x E R, initial penalty E R, change <= x10, p_reg 0.5 "
         "p_max, g_T,max 0.0005 mm, friction tangent consistent, element placement weighted, normals "
-        "updated by loop B (Anderson memory 3 when unstable), "
+        "updated by loop B (Anderson memory 3 when unstable), frictionless parallel normals "
+        "linearised in Newton once loop B diverges, "
         "stick/slip held after 2 changes (tolerance 0.01)\n",
         "  contact classes: warp (3 fibres), weft (3 fibres)\n",
         "  contact pairs (other pairs: the section's mu, p_max and penalty above):\n"
@@ -83,6 +84,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   j["fibres"][5]["class"] = "";
   j["contact"]["follow_crossings"] = true;
   j["contact"]["facing_particles"] = true;
+  j["contact"]["normal_update"] = "loop";
   j["solver"] = {{"strategy", "mumps"}, {"ordering", "metis"}, {"blr_tolerance", 1e-6}};
   writeFile(scratch / "choices.json", j.dump());
   const RunResult c = runFibra({"check", scratch / "choices.json"}, scratch);

@@ -154,7 +154,7 @@ TEST_CASE("frictionless contact acts on facing particles: the true gap, no torqu
     }
     // Against central differences, with the outlines' rolling stiffness (without it: 6e-6 of
     // |K| off, sheared, against 4e-9 with it).
-    REQUIRE(w.system.symmetric);  // frictionless: the upper triangle is stored
+    REQUIRE(w.system.symmetric);  // frictionless, loop B converged: the upper triangle is stored
     const Eigen::MatrixXd K = Eigen::MatrixXd(w.system.K).selfadjointView<Eigen::Upper>();
     const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
     CHECK((K - Kfd).norm() <= 1e-7 * K.norm());

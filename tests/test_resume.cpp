@@ -3,6 +3,7 @@
 // uninterrupted world ends, with the same iterations on the way; a checkpoint that is truncated,
 // corrupt or of another scene is refused with the reason and leaves the world unchanged.
 #include "contact_scenes.h"
+#include "io/scene_loader.h"
 #include "observed_state.h"
 
 #include <doctest/doctest.h>
@@ -180,4 +181,24 @@ TEST_CASE("a truncated, corrupt or foreign checkpoint is refused with its reason
   REQUIRE(w.step().status == StepStatus::Converged);
   REQUIRE(twin.step().status == StepStatus::Converged);
   checkSame(observe(w), observe(twin));
+}
+
+TEST_CASE("resuming across increments restarted with linearised normals ends bitwise where the uninterrupted run ends") {
+  // The 10 mm heavy line contact: loop B diverges at t = 0.6 and t = 1, and those increments
+  // restart with linearised normals and a non-symmetric tangent (a new pattern), then the next
+  // attempt goes back to the symmetric one.
+  const SceneDef scene = loadSceneFromString(heavyLineContact("", 10), "heavy.json");
+  World full(scene);
+  const Run reference = solve(full);
+  REQUIRE(reference.checkpoints.size() == 5);
+  for (size_t k : {size_t(1), size_t(2)}) {  // before and after the first restarted increment
+    CAPTURE(k);
+    World resumed(scene);
+    restore(resumed, reference.checkpoints[k]);
+    const Run rest = solve(resumed);
+    REQUIRE(rest.iterations.size() == reference.iterations.size() - k - 1);
+    for (size_t i = 0; i < rest.iterations.size(); ++i)
+      CHECK(rest.iterations[i] == reference.iterations[k + 1 + i]);
+    CHECK(rest.checkpoints.back() == reference.checkpoints.back());
+  }
 }
