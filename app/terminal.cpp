@@ -195,6 +195,10 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
                  "  note: %d more pass(es) with a new detection at acceptance: the fibres "
                  "overlapped deeper than the contact elements reported (contact.max_overlap)\n",
                  c.consistencyPasses);
+  if (contact && c.normalRestarts > 0)
+    std::fprintf(stderr,
+                 "  note: loop B's normal updates diverged: the increment restarted with the "
+                 "frictionless parallel normals linearised in Newton (contact.normal_update)\n");
   if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
     std::fprintf(stderr,
                  "  note: the step ends %.3g of the reference force away from static equilibrium "

@@ -44,6 +44,7 @@ struct ContactReport {
   int restarts = 0;            // loop A passes restarted from the increment's start because the
                                // previous pass penetrated deeply where it had no element, or
                                // its loop B diverged ("newton_frictionless" then linearises)
+  int normalRestarts = 0;      // of them, those after loop B diverged
   int zones = 0;               // proximity zones (fibre-fibre)
   int elements = 0;            // fibre-fibre contact elements
   int toolElements = 0;        // fibre-tool contact elements

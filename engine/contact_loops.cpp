@@ -119,10 +119,13 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
     if (b == s.maxNormalLoops) break;
     runStage(w, w.pipeline.normals, tTry);
     const bool mixed = mixer.record(w.trial.elements);
-    // Diverging with frictionless parallel elements: their normals go into Newton from now on.
+    // Diverging with frictionless parallel elements: their normals go into Newton from now on,
+    // after a restart of the increment (solveContactIncrement).
     if (s.newtonFrictionlessOnly && !s.unstableNormals && mixer.unstable() &&
-        anyFrictionlessParallel(w))
+        anyFrictionlessParallel(w)) {
       w.contact.unstableNormals = true;
+      break;
+    }
     const bool moved = w.fibreStats.crossingShift > s.particleTolerance * minRadius(w.fibres);
     if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance &&
         switched == 0 && !moved)
@@ -158,6 +161,7 @@ constexpr int kConsistencyPasses = 2;
 NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
                               const NewtonCallbacks& callbacks, StepTimings& timings,
                               ContactReport& report, NormalMixer& mixer, NewtonResult nr) {
+  const bool linearised = w.contact.unstableNormals;
   for (int extra = 0;; ++extra) {
     checkContactSet(w, tTry, report);
     // A check cut short by a cancel checked nothing: the attempt is not accepted unchecked
@@ -178,45 +182,30 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
     if (!detect(w, tTry, report)) return cancelled(nr);
     ++report.consistencyPasses;
     nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);
+    if (!linearised && w.contact.unstableNormals) return nr;  // the increment restarts
     if (nr.outcome != NewtonOutcome::Converged) return nr;
     fillContactReport(w.contact, w.trial, report);
   }
 }
 
-}  // namespace
-
-NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSettings& settings,
-                                   const NewtonCallbacks& cb, StepTimings& timings,
-                                   ContactReport& report) {
+// The passes of an increment from the state it starts from (q, trial contact state): a
+// detection there, loop A's passes (each loop B), the acceptance. Returns early, whatever the
+// outcome, once loop B diverges with "newton_frictionless" (ContactParams::unstableNormals set
+// in this call): the caller starts again.
+NewtonResult contactPasses(WorldState& w, double tTry, const NewtonSettings& settings,
+                           const NewtonCallbacks& callbacks, StepTimings& timings,
+                           ContactReport& report, NewtonResult nr) {
   const ContactParams& s = w.contact;
-  NewtonCallbacks callbacks = cb;
-  callbacks.stepLimit = [&w](const Eigen::VectorXd& dq) { return stepLimit(w.contact, w.trial, dq); };
-  NewtonResult nr;
+  const bool linearised = s.unstableNormals;
   NormalMixer mixer(s.normalMemory);
-  report = ContactReport{};
   const Eigen::VectorXd qEntry = w.fibres.q;
   Eigen::VectorXd qDetected = w.fibres.q;
   if (!detect(w, w.time, report)) return cancelled(nr);
   applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
-  bool linearised = s.unstableNormals;
   for (int a = 1; a <= s.maxDetectionLoops; ++a) {
     report.detectionLoops = a;
     nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);
-    if (!linearised && s.unstableNormals) {
-      // Loop B diverged ("newton_frictionless"): the fibres have left along the unstable mode;
-      // the increment starts again from its start with the frictionless parallel normals
-      // linearised, so that Newton seeks the equilibrium the fixed point could not hold.
-      linearised = true;
-      w.fibres.q = qEntry;
-      w.trial = w.committed;
-      qDetected = qEntry;
-      setSymmetric(w, symmetricTangent(w));  // non-symmetric from now on
-      if (!detect(w, w.time, report)) return cancelled(nr);
-      applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
-      ++report.restarts;
-      a = 0;
-      continue;
-    }
+    if (!linearised && s.unstableNormals) return nr;
     if (nr.outcome != NewtonOutcome::Converged) return nr;
     // The penalties this pass was solved with; the adapted ones serve the next pass only.
     const std::vector<double> zonePenalty = w.trial.zones.penalty;
@@ -248,6 +237,31 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
     }
   }
   return s.fibres ? acceptContactSet(w, tTry, settings, callbacks, timings, report, mixer, nr) : nr;
+}
+
+}  // namespace
+
+NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSettings& settings,
+                                   const NewtonCallbacks& cb, StepTimings& timings,
+                                   ContactReport& report) {
+  NewtonCallbacks callbacks = cb;
+  callbacks.stepLimit = [&w](const Eigen::VectorXd& dq) { return stepLimit(w.contact, w.trial, dq); };
+  report = ContactReport{};
+  const Eigen::VectorXd qEntry = w.fibres.q;
+  const bool linearised = w.contact.unstableNormals;
+  NewtonResult nr = contactPasses(w, tTry, settings, callbacks, timings, report, NewtonResult{});
+  if (linearised || !w.contact.unstableNormals || nr.outcome == NewtonOutcome::Cancelled)
+    return nr;
+  // Loop B diverged ("newton_frictionless"): the fibres have left along the unstable mode. The
+  // increment starts again from its start, its frictionless parallel normals linearised and the
+  // tangent non-symmetric (a new pattern at the detection), so that Newton seeks the
+  // equilibrium the fixed point could not hold; the iterations spent so far stay counted.
+  w.fibres.q = qEntry;
+  w.trial = w.committed;
+  setSymmetric(w, symmetricTangent(w));
+  ++report.restarts;
+  ++report.normalRestarts;
+  return contactPasses(w, tTry, settings, callbacks, timings, report, nr);
 }
 
 }  // namespace fibra
