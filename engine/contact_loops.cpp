@@ -247,11 +247,9 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
   NewtonCallbacks callbacks = cb;
   callbacks.stepLimit = [&w](const Eigen::VectorXd& dq) { return stepLimit(w.contact, w.trial, dq); };
   report = ContactReport{};
-  const Eigen::VectorXd qEntry = w.fibres.q;
-  const bool linearised = w.contact.unstableNormals;
+  const Eigen::VectorXd qEntry = w.fibres.q;  // unstableNormals is false here (beginAttempt)
   NewtonResult nr = contactPasses(w, tTry, settings, callbacks, timings, report, NewtonResult{});
-  if (linearised || !w.contact.unstableNormals || nr.outcome == NewtonOutcome::Cancelled)
-    return nr;
+  if (!w.contact.unstableNormals || nr.outcome == NewtonOutcome::Cancelled) return nr;
   // Loop B diverged ("newton_frictionless"): the fibres have left along the unstable mode. The
   // increment starts again from its start, its frictionless parallel normals linearised and the
   // tangent non-symmetric (a new pattern at the detection), so that Newton seeks the
