@@ -89,7 +89,8 @@ struct ContactParams {
                                 // loop B (systems/crossing_follow.h)
   bool facingParticles = false; // frictionless elements act on the outlines' points extremal
                                 // along N, taken anew at every evaluation
-                                // (systems/facing_particles.h)
+                                // (systems/facing_particles.h; a scene's default is true,
+                                // ContactDef in engine/scene.h)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,
                                 // systems/tool_detection.h)
 

@@ -230,7 +230,7 @@ struct ContactDef {
                                       // plain update; <= 10)
   bool followCrossings = false;       // frictionless crossings' sections follow the closest
                                       // points in loop B (systems/crossing_follow.h)
-  bool facingParticles = false;       // frictionless elements act on the outlines' points
+  bool facingParticles = true;        // frictionless elements act on the outlines' points
                                       // extremal along N (systems/facing_particles.h)
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };

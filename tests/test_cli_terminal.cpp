@@ -83,7 +83,6 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   j["contact"]["pairs"][1]["classes"] = "between";
   j["fibres"][5]["class"] = "";
   j["contact"]["follow_crossings"] = true;
-  j["contact"]["facing_particles"] = true;
   j["contact"]["normal_update"] = "loop";
   j["solver"] = {{"strategy", "mumps"}, {"ordering", "metis"}, {"blr_tolerance", 1e-6}};
   writeFile(scratch / "choices.json", j.dump());
@@ -97,7 +96,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   CHECK(r.output.find("  linear solver: auto (direct below 7000 free equations, mumps from "
                       "there), ordering auto\n") != std::string::npos);
   CHECK(r.output.find("crossings follow") == std::string::npos);
-  CHECK(r.output.find("facing particles") == std::string::npos);
+  CHECK(r.output.find(", frictionless forces on facing particles\n") != std::string::npos);  // default
   CHECK(c.output.find("friction tangent symmetrised, element placement paper, normals updated by "
                       "loop B (Anderson memory 3 when unstable), stick/slip held "
                       "after 2 changes (tolerance 0.01)\n") !=

@@ -24,6 +24,23 @@ constexpr LinearStrategy kStrategies[] = {LinearStrategy::Direct, LinearStrategy
                                           LinearStrategy::Krylov, LinearStrategy::KrylovLu,
                                           LinearStrategy::Mumps};
 
+// The largest difference between two states in what the mechanics fixes: the centrelines x0
+// (mm) and each section's metric g_a . g_b (stretch and shear, -). Not the sections' spin about
+// the fibre's axis: frictionless contact on facing particles (the default) puts no torque on a
+// fibre, and a fibre whose ends hold only x and y has no torsional support, so the spin is a
+// rigid mode that only the stabilisation springs fix (a KrylovLu run of the frictionless bundle
+// below differs from the direct one by 5e-11 in a director, 1.2e-13 in x0 and metric).
+double mechanicalDifference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  double d = 0;
+  for (Eigen::Index n = 0; n < a.size() / 9; ++n) {
+    const auto node = [n](const Eigen::VectorXd& q, int at) { return Vec3(q.segment<3>(9 * n + at)); };
+    d = std::max(d, (node(a, 0) - node(b, 0)).cwiseAbs().maxCoeff());
+    for (int i : {3, 6})
+      for (int j : {3, 6}) d = std::max(d, std::abs(node(a, i).dot(node(a, j)) - node(b, i).dot(node(b, j))));
+  }
+  return d;
+}
+
 // A 7-fibre bundle after its first converged squeeze increment, with the tangent Newton last
 // assembled (at the converged state).
 std::unique_ptr<WorldState> squeezedBundle(double mu, NormalUpdate update = NormalUpdate::Newton) {
@@ -247,12 +264,13 @@ TEST_CASE("a squeezed 7-fibre bundle reaches the same state with every linear st
     // modes that the stabilisation springs, anchored at each increment's start, carry from
     // increment to increment (measured over these 4 increments: 6e-16 mm frictionless, 1e-11
     // with friction; over all 10: 9e-8 and 2e-11).
-    const double exactSpread = (finals[1] - finals[0]).cwiseAbs().maxCoeff();
+    const double exactSpread = mechanicalDifference(finals[1], finals[0]);
     CAPTURE(mu);
     CAPTURE(exactSpread);
     for (size_t k = 2; k < finals.size(); ++k) {
       CAPTURE(k);
-      CHECK((finals[k] - finals[0]).cwiseAbs().maxCoeff() <= exactSpread + 1e-11);
+      MESSAGE("state difference " << mechanicalDifference(finals[k], finals[0]));
+      CHECK(mechanicalDifference(finals[k], finals[0]) <= exactSpread + 1e-11);
     }
     for (size_t k = 1; k < forces.size(); ++k) CHECK(std::abs(forces[k] - forces[0]) <= 1e-8 * std::abs(forces[0]));
   }

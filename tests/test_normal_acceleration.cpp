@@ -9,6 +9,7 @@
 #include "io/scene_loader.h"
 
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <string>
@@ -96,6 +97,38 @@ TEST_CASE("the full heavy line contact converges: a diverging loop B restarts wi
   World loop(loadSceneFromString(heavyLineContact(R"(, "normal_update": "loop")", 10), "h.json"));
   bool failed = false;
   while (!loop.finished() && !failed) failed = loop.step().status != StepStatus::Converged;
+  CHECK(failed);
+}
+
+// The heavy line contact (10 mm) with mu = 0.3, loaded frictionless (friction_factor 0) and then held
+// with friction in two increments where nothing prescribed changes.
+std::string frictionalHold(bool facing) {
+  nlohmann::json j = nlohmann::json::parse(heavyLineContact("", 10));
+  j["contact"]["friction"] = 0.3;
+  j["contact"]["facing_particles"] = facing;
+  j["steps"] = {{{"name", "load"}, {"end_time", 1}, {"increments", 5}, {"friction_factor", 0}},
+                {{"name", "hold"}, {"end_time", 2}, {"increments", 2}}};
+  return j.dump();
+}
+
+TEST_CASE("a frictional hold after the frictionless load of the heavy line contact holds the state") {
+  // With the paper's material particles the hold stalled (loop A capped, stagnation at t = 1.5);
+  // with facing particles (the default) the load ends where the hold's detection finds the same
+  // contact, and the hold's increments start in equilibrium.
+  World w(loadSceneFromString(frictionalHold(true), "hold.json"));
+  int holdIterations = 0;
+  while (!w.finished()) {
+    const StepReport r = w.step();
+    REQUIRE_MESSAGE(r.status == StepStatus::Converged, r.message);
+    if (r.step == 1) holdIterations = std::max(holdIterations, r.totalIterations);
+  }
+  CHECK(w.time() == doctest::Approx(2));
+  CHECK(holdIterations <= 2);
+  CHECK(lateral(w) <= 1e-5);
+  CHECK(w.reaction(2).force.z() == doctest::Approx(10.0).epsilon(1e-6));  // q L on D's support
+  World paper(loadSceneFromString(frictionalHold(false), "hold.json"));
+  bool failed = false;
+  while (!paper.finished() && !failed) failed = paper.step().status != StepStatus::Converged;
   CHECK(failed);
 }
 
