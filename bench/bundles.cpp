@@ -5,7 +5,8 @@
 // converged increments, their Newton iterations (all attempts; mean and max) and cutbacks (a
 // failed increment's are given with its message), the largest viscous force of the continuation
 // (relative to the reference force: how far from static equilibrium; 0 without --damping), the
-// most stick/slip statuses held in an increment, wall time
+// most stick/slip statuses held in an increment, the top tool's force at the last converged
+// increment (squeeze: N, along z; the error of a p_max against the finest one), wall time
 // and its share per part (assembly, factorisation, solve, the rest: detection, normals,
 // penalties, set-up). One markdown table row per run, as docs/RESULTS.md shows them.
 //
@@ -14,6 +15,7 @@
 //                       [--damping C]  (viscous continuation on every step, StepDef::damping)
 //                       [--hold-after N]  (contact.friction_hold_after; 0: statuses never held)
 //                       [--normal-update newton|loop|newton_frictionless]
+//                       [--facing on|off]  (contact.facing_particles, default on)
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -47,6 +49,7 @@ struct Outcome {
   double wall = 0, assemble = 0, factorise = 0, solve = 0;
   double viscous = 0;  // largest viscous force / reference force of a converged increment
   int held = 0;        // most elements with a held stick/slip status in an increment
+  double toolForce = 0;  // the top tool's force along z at the last converged increment, N
   std::string failure;
 };
 
@@ -72,6 +75,7 @@ Outcome run(const SceneDef& scene, const WorldDef& def) {
       o.held = std::max(o.held, r.contact.frictionHeld);
     }
     o.reached = w.time();
+    if (w.scene().tools.size() > 1) o.toolForce = w.toolReaction(1).z();
   });
   return o;
 }
@@ -80,11 +84,11 @@ void printRow(const char* load, size_t fibres, int elements, double mu, double p
               const Outcome& o) {
   const double other = o.wall - o.assemble - o.factorise - o.solve;
   const auto share = [&](double x) { return 100 * x / o.wall; };
-  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1e | %d | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
+  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1e | %d | %.6g | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
               load, fibres, elements, mu, pMax,
               o.failure.empty() ? "yes" : ("no, t = " + std::to_string(o.reached)).c_str(),
               o.increments, o.increments ? double(o.iterations) / o.increments : 0.0,
-              o.maxIterations, o.cutbacks, o.viscous, o.held, o.wall, share(o.assemble), share(o.factorise),
+              o.maxIterations, o.cutbacks, o.viscous, o.held, o.toolForce, o.wall, share(o.assemble), share(o.factorise),
               share(o.solve), share(other));
   if (!o.failure.empty()) std::printf("  failure: %s\n", o.failure.c_str());
 }
@@ -98,6 +102,7 @@ int main(int argc, char** argv) {
   bool lineSearch = false;
   double damping = 0;
   int holdAfter = ContactDef{}.frictionHoldAfter;
+  bool facing = ContactDef{}.facingParticles;
   NormalUpdate normalUpdate = ContactDef{}.normalUpdate;
   WorldDef def;
   def.threads = 2;
@@ -115,17 +120,19 @@ int main(int argc, char** argv) {
       normalUpdate = !std::strcmp(argv[i + 1], "loop")     ? NormalUpdate::Loop
                      : !std::strcmp(argv[i + 1], "newton") ? NormalUpdate::Newton
                                                            : NormalUpdate::NewtonFrictionless;
+    if (!std::strcmp(argv[i], "--facing")) facing = !std::strcmp(argv[i + 1], "on");
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::printf("threads %d, line search %s, damping %g, friction_hold_after %d, normal update %s\n\n",
-              def.threads, lineSearch ? "on" : "off", damping, holdAfter,
+  std::printf("threads %d, line search %s, damping %g, friction_hold_after %d, facing particles "
+              "%s, normal update %s\n\n",
+              def.threads, lineSearch ? "on" : "off", damping, holdAfter, facing ? "on" : "off",
               normalUpdate == NormalUpdate::Loop     ? "loop"
               : normalUpdate == NormalUpdate::Newton ? "newton"
                                                      : "newton_frictionless");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
               "per increment, mean / max | cutbacks | viscous force, max | held statuses, max | "
-              "wall s | %% asm / fac / sol / other |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+              "tool force N | wall s | %% asm / fac / sol / other |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (double r : rings)
     for (const std::string& load : loads)
       for (double mu : mus)
@@ -135,6 +142,7 @@ int main(int argc, char** argv) {
           for (StepDef& st : s.steps) st.lineSearch = lineSearch, st.damping = damping;
           s.contact.frictionHoldAfter = holdAfter;
           s.contact.normalUpdate = normalUpdate;
+          s.contact.facingParticles = facing;
           printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
         }
 }
