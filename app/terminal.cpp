@@ -122,7 +122,8 @@ std::string contactLines(const World& world) {
                   c.pairs.pMax[0], c.pairs.mu[0], degrees(c.thetaCross), degrees(c.thetaParallel),
                   c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops,
                   c.followCrossings ? ", crossings follow the closest points" : "",
-                  c.facingParticles ? ", frictionless forces on facing particles" : "");
+                  c.facingParticles ? ", frictionless forces on facing particles"
+                                    : ", frictionless forces on material particles (the paper's)");
   out += lawLine(c);
   if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(s);
   if (c.tools) out += toolLines(world);

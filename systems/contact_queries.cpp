@@ -111,6 +111,17 @@ double shift(double ds, double dxi1, double dxi2, double R) {
   return std::sqrt(ds * ds + dxi1 * dxi1 + dxi2 * dxi2) / R;
 }
 
+// Element b's gap at the state fs.q as the solve measured its counterpart: between the facing
+// particles along b's normal where the used element acted on facing particles
+// (systems/facing_particles.h), else the detection's own (material particles), mm.
+double freshGap(const FibreStore& fs, const ContactElementStore& ef, Index b, bool facing) {
+  FacingSide I, J;
+  if (!facing || !facingSide(fs.q, ef.sideI[b], fs.radius[ef.fibreI[b]], -ef.normal[b], I) ||
+      !facingSide(fs.q, ef.sideJ[b], fs.radius[ef.fibreJ[b]], ef.normal[b], J))
+    return ef.gap[b];
+  return (I.position - J.position).dot(ef.normal[b]);
+}
+
 }  // namespace
 
 void compareContactSets(const FibreStore& fs, const ContactState& used, const ContactState& fresh,
@@ -132,9 +143,11 @@ void compareContactSets(const FibreStore& fs, const ContactState& used, const Co
     const Index o = it->second;
     for (Index k = 0; k < zf.elementCount[z]; ++k) {
       const Index a = zu.firstElement[o] + k, b = zf.firstElement[z] + k;
-      if (std::min(ef.gap[b], used.forces.gap[a]) >= 0) continue;  // open in both
+      const bool facing = a < Index(used.forces.facing.size()) && used.forces.facing[a];
+      const double gap = freshGap(fs, ef, b, facing);
+      if (std::min(gap, used.forces.gap[a]) >= 0) continue;  // open in both
       r.redetectGapChange =
-          std::max(r.redetectGapChange, std::abs(ef.gap[b] - used.forces.gap[a]) / zu.pMax[o]);
+          std::max(r.redetectGapChange, std::abs(gap - used.forces.gap[a]) / zu.pMax[o]);
       const double sI = shift(ef.sI[b] - eu.sI[a], ef.xiI1[b] - eu.xiI1[a],
                               ef.xiI2[b] - eu.xiI2[a], fs.radius[ef.fibreI[b]]);
       const double sJ = shift(ef.sJ[b] - eu.sJ[a], ef.xiJ1[b] - eu.xiJ1[a],

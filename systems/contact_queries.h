@@ -33,7 +33,9 @@
 //                     was solved with (`used`): zones paired by id; zones without a partner or
 //                     with another element count are counted; elements of paired zones paired
 //                     by index, those closed in either set: the largest |g_fresh - g_used| /
-//                     p_max and the largest particle
+//                     p_max (g_fresh on facing particles along the fresh normal where the used
+//                     element's force acted on facing particles, systems/facing_particles.h:
+//                     like for like) and the largest particle
 //                     shift sqrt(ds^2 + |dxi|^2) / R of either side (s arc length, xi section
 //                     coordinates, R the side's radius).
 #pragma once

@@ -83,6 +83,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   j["contact"]["pairs"][1]["classes"] = "between";
   j["fibres"][5]["class"] = "";
   j["contact"]["follow_crossings"] = true;
+  j["contact"]["facing_particles"] = false;
   j["contact"]["normal_update"] = "loop";
   j["solver"] = {{"strategy", "mumps"}, {"ordering", "metis"}, {"blr_tolerance", 1e-6}};
   writeFile(scratch / "choices.json", j.dump());
@@ -90,7 +91,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   REQUIRE(c.status == 0);
   CHECK(c.output.find("initial penalty 100 N/mm, ") != std::string::npos);
   CHECK(c.output.find(", loops A <= 3, B <= 3, crossings follow the closest points, frictionless "
-                      "forces on facing particles\n") != std::string::npos);
+                      "forces on material particles (the paper's)\n") != std::string::npos);
   CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, GMRES to "
                       "1e-08 (restart 40, <= 200 iterations)\n") != std::string::npos);
   CHECK(r.output.find("  linear solver: auto (direct below 7000 free equations, mumps from "

@@ -25,18 +25,20 @@ constexpr LinearStrategy kStrategies[] = {LinearStrategy::Direct, LinearStrategy
                                           LinearStrategy::Mumps};
 
 // The largest difference between two states in what the mechanics fixes: the centrelines x0
-// (mm) and each section's metric g_a . g_b (stretch and shear, -). Not the sections' spin about
-// the fibre's axis: frictionless contact on facing particles (the default) puts no torque on a
+// (mm), each section's metric g_a . g_b (stretch and shear in its plane, -) and its tilt against
+// the bundle's axis x (g_a . e_x: the fibres lie along x). Not the sections' spin about the axis: frictionless contact on facing particles (the default) puts no torque on a
 // fibre, and a fibre whose ends hold only x and y has no torsional support, so the spin is a
 // rigid mode that only the stabilisation springs fix (a KrylovLu run of the frictionless bundle
-// below differs from the direct one by 5e-11 in a director, 1.2e-13 in x0 and metric).
+// below differs from the direct one by 5e-11 in a director, 1.8e-12 in these).
 double mechanicalDifference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   double d = 0;
   for (Eigen::Index n = 0; n < a.size() / 9; ++n) {
     const auto node = [n](const Eigen::VectorXd& q, int at) { return Vec3(q.segment<3>(9 * n + at)); };
     d = std::max(d, (node(a, 0) - node(b, 0)).cwiseAbs().maxCoeff());
-    for (int i : {3, 6})
+    for (int i : {3, 6}) {
+      d = std::max(d, std::abs(node(a, i).x() - node(b, i).x()));
       for (int j : {3, 6}) d = std::max(d, std::abs(node(a, i).dot(node(a, j)) - node(b, i).dot(node(b, j))));
+    }
   }
   return d;
 }
