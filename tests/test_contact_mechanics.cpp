@@ -178,6 +178,55 @@ TEST_CASE("frictionless contact acts on facing particles: the true gap, no torqu
   CHECK(w.trial.forces.facing.empty());  // nor any facing column stored
 }
 
+TEST_CASE("a weighted line contact's tangent matches finite differences: facing particles, and in slip") {
+  // Two parallel beams, A of 8 elements, B of 7 (the elements between both fibres' element ends
+  // then differ in length), A pressed 8e-5 mm into its floor tool and B 8e-5 mm into A along their
+  // length (p_max 1e-4: past the regularised penalty's 5e-5; at 0 or 5e-5 central differences
+  // straddle a kink of the penalty and miss by O(h)): the weighted
+  // Gauss-point elements of a line contact. Frictionless: facing particles (the default);
+  // mu = 0.3: material particles, B then slid 3e-3 mm along x (past g_T,max).
+  for (double mu : {0.0, 0.3}) {
+    CAPTURE(mu);
+    WorldState w;
+    w.scene = parallelBeams(0.01, 1e-4, 8);
+    w.scene.contact.friction = mu;
+    w.scene.contact.maxReversibleSlip = 5e-4;
+    w.scene.fibres[1].elements = 7;
+    buildWorld(w);
+    const auto move = [&](Index f, const Vec3& by) {
+      for (Index n = w.fibres.firstNode[f]; n < w.fibres.firstNode[f] + w.fibres.nodeCount[f]; ++n)
+        x0Of(w.fibres.q, n) += by;
+    };
+    move(0, Vec3(0, 0, -8e-5));   // A into the floor tool, likewise off its penalty's kinks
+    move(1, Vec3(0, 0, -16e-5));  // B into A
+    runStage(w, w.pipeline.detect, 0);
+    move(1, Vec3(mu > 0 ? 3e-3 : 0, 0, 0));
+    assembleAt(w, true);
+    const ContactElementStore& el = w.trial.elements;
+    const ContactForceStore& f = w.trial.forces;
+    REQUIRE(el.size() > 4);
+    double lightest = 1e300, heaviest = 0;
+    int pressed = 0, sliding = 0, facing = 0;
+    for (Index e = 0; e < el.size(); ++e) {
+      lightest = std::min(lightest, el.weight[e]), heaviest = std::max(heaviest, el.weight[e]);
+      pressed += f.normalForce[e] > 0;
+      sliding += f.slip[e] != 0;
+      facing += e < Index(f.facing.size()) && f.facing[e];
+    }
+    CHECK(heaviest > 1.1 * lightest);  // unequal weights: the Gauss points' shares
+    CHECK(pressed > 4);
+    CHECK((sliding > 0) == (mu > 0));
+    CHECK((facing > 0) == (mu == 0));
+    const Eigen::MatrixXd stored(w.system.K);
+    const Eigen::MatrixXd K = w.system.symmetric
+                                  ? Eigen::MatrixXd(stored.selfadjointView<Eigen::Upper>())
+                                  : stored;
+    const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
+    MESSAGE("|K - K_fd| / |K| = " << (K - Kfd).norm() / K.norm());
+    CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
+  }
+}
+
 TEST_CASE("regenerating the contact elements without motion leaves the forces unchanged") {
   SceneDef s = parallelBeams(0.01, 1e-4);
   s.contact.friction = 0.2;

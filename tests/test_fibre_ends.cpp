@@ -4,6 +4,8 @@
 // 0.002 mm past touch: its end face rests on the plane within p_max, and the plane carries
 // EA x the fibre's shortening (a straight bar: F = E pi R^2 (0.002 + z_tip) / L).
 #include "engine/world.h"
+#include "engine/world_state.h"
+#include "fd_tangent.h"
 #include "io/scene_loader.h"
 
 #include <doctest/doctest.h>
@@ -136,4 +138,46 @@ TEST_CASE("no contact past a fibre's end: an end that slid off a fibre leaves no
   }
   CHECK(pressed > 1e-4);  // A carried B before the slide
   CHECK(past >= 3);
+}
+
+TEST_CASE("an end face's contact tangent matches finite differences, frictionless and in slip") {
+  // The tee: B's end face (at z = 0.3 on B's start) brought 0.2 mm + 3e-4 mm down, into A's top,
+  // and, with friction, slid 3e-3 mm along A (past g_T,max): the element on B's end face.
+  for (double mu : {0.0, 0.3}) {
+    CAPTURE(mu);
+    WorldState w;
+    w.scene = tee(1);
+    w.scene.contact.friction = mu;
+    buildWorld(w);
+    const FibreStore& fs = w.fibres;
+    const auto moveB = [&](const Vec3& by) {
+      for (Index n = fs.firstNode[1]; n < fs.firstNode[1] + fs.nodeCount[1]; ++n)
+        x0Of(w.fibres.q, n) += by;
+    };
+    moveB(Vec3(0, 0, -0.2 - 3e-4));
+    runStage(w, w.pipeline.detect, 0);  // the friction reference at the pressed state
+    moveB(Vec3(mu > 0 ? 3e-3 : 0, 0, 0));
+    const ContactElementStore& el = w.trial.elements;
+    int faces = 0;
+    for (Index e = 0; e < el.size(); ++e) faces += (el.fallback[e] & (kEndFaceI | kEndFaceJ)) != 0;
+    REQUIRE(faces > 0);
+    runStage(w, w.pipeline.assemble, 0, true);
+    double pressed = 0;
+    int sliding = 0;
+    for (Index e = 0; e < el.size(); ++e) {
+      pressed = std::max(pressed, w.trial.forces.normalForce[e]);
+      sliding += w.trial.forces.slip[e] != 0;
+    }
+    REQUIRE(pressed > 0);
+    CHECK((sliding > 0) == (mu > 0));
+    // Frictionless, the tangent is symmetric and only its upper triangle is stored.
+    const Eigen::MatrixXd stored(w.system.K);
+    const Eigen::MatrixXd K = w.system.symmetric
+                                  ? Eigen::MatrixXd(stored.selfadjointView<Eigen::Upper>())
+                                  : stored;
+    CHECK(w.system.symmetric == (mu == 0));
+    const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
+    MESSAGE("|K - K_fd| / |K| = " << (K - Kfd).norm() / K.norm());
+    CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
+  }
 }
