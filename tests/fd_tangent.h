@@ -11,6 +11,14 @@
 
 namespace fibra::test {
 
+// The tangent last assembled as a full matrix: both triangles where only the upper one is stored
+// (LinearSystem::symmetric).
+inline Eigen::MatrixXd fullTangent(const LinearSystem& ls) {
+  const Eigen::MatrixXd K(ls.K);
+  if (!ls.symmetric) return K;
+  return K.selfadjointView<Eigen::Upper>();
+}
+
 // K_fd(i, j) = (r_i(q + h e_j) - r_i(q - h e_j)) / 2h over the free DOFs; q is left as found.
 inline Eigen::MatrixXd finiteDifferenceTangent(WorldState& w, double t, double h = 1e-8) {
   const Index n = w.system.freeCount;

@@ -66,9 +66,7 @@ void pressedPair(WorldState& w, double angle, double mu, double depth, const Vec
 // The assembled tangent, both triangles.
 Eigen::MatrixXd tangentOf(WorldState& w) {
   runStage(w, w.pipeline.assemble, 0, true);
-  const Eigen::MatrixXd K(w.system.K);
-  if (!w.system.symmetric) return K;
-  return K.selfadjointView<Eigen::Upper>();
+  return test::fullTangent(w.system);
 }
 
 // |K - K_fd| / |K| at the pressed state.
