@@ -130,6 +130,45 @@ std::string contactLines(const World& world) {
   return out;
 }
 
+// Friction somewhere: between fibres (the section or a pair rule) or with a tool.
+bool anyFriction(const SceneDef& s) {
+  bool mu = s.contact.enabled && s.contact.friction > 0;
+  for (const ContactPairDef& r : s.contact.pairs) mu = mu || (s.contact.enabled && r.friction > 0);
+  for (const ToolDef& t : s.tools) mu = mu || t.friction > 0;
+  return mu;
+}
+
+// Fibres that hold no director and at most two nodes: a rotation about the line through their
+// held nodes (for a straight fibre, its spin about its axis) moves no held DOF, so only contact
+// friction resists it, and nothing once all of the fibre's contacts slip (the tangent of the slip
+// branch has no stiffness along the slip: docs/METHOD.md "Free spin"). "" without friction.
+std::string freeSpinLine(const World& world) {
+  const SceneDef& s = world.scene();
+  const FibreStore& f = world.fibres();
+  if (!anyFriction(s)) return "";
+  std::vector<int> directors(f.fibres(), 0);
+  std::vector<std::vector<Index>> nodes(f.fibres());
+  for (Index d : world.constraints().dof) {
+    const Index node = d / kNodeDofs;
+    const auto next = std::upper_bound(f.firstNode.begin(), f.firstNode.end(), node);
+    const Index fibre = Index(next - f.firstNode.begin()) - 1;
+    if (d % kNodeDofs >= 3) ++directors[fibre];  // g1, g2
+    else if (nodes[fibre].empty() || nodes[fibre].back() != node) nodes[fibre].push_back(node);
+  }
+  std::vector<std::string> names;
+  for (Index i = 0; i < f.fibres(); ++i)
+    if (directors[i] == 0 && nodes[i].size() <= 2) names.push_back(s.fibres[i].name);
+  if (names.empty()) return "";
+  std::string list;
+  for (size_t i = 0; i < names.size() && i < 4; ++i) list += (i ? ", " : "") + names[i];
+  if (names.size() > 4) list += ", ...";
+  return format("  note: %zu fibre%s (%s) hold%s no director: friction alone holds %s spin, and "
+                "nothing once every contact slips; hold one director component at an end if "
+                "Newton stagnates (docs/METHOD.md \"Free spin\")\n",
+                names.size(), names.size() > 1 ? "s" : "", list.c_str(),
+                names.size() > 1 ? "" : "s", names.size() > 1 ? "their" : "its");
+}
+
 // The scene's linear solver settings (a WorldDef may override the strategy: engine/world.h).
 std::string solverLine(const SceneDef& s) {
   const SolverDef& v = s.solver;
@@ -163,6 +202,7 @@ std::string describeProblem(const World& world, const std::string& scene, int th
   out += format("  %zu steps, %d increments, t = 0 .. %g\n", s.steps.size(), increments,
                 s.steps.empty() ? 0.0 : s.steps.back().endTime);
   out += contactLines(world);
+  out += freeSpinLine(world);
   out += solverLine(s);
   if (threads >= 0)
     out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());

@@ -6,7 +6,8 @@
 // failed increment's are given with its message), the largest viscous force of the continuation
 // (relative to the reference force: how far from static equilibrium; 0 without --damping), the
 // most stick/slip statuses held in an increment, the top tool's force at the last converged
-// increment (squeeze: N, along z; the error of a p_max against the finest one), wall time
+// increment (squeeze: N, along z; the error of a p_max against the finest one), the sum of the
+// fibre-fibre friction forces' magnitudes there (N; what held statuses cost), wall time
 // and its share per part (assembly, factorisation, solve, the rest: detection, normals,
 // penalties, set-up). One markdown table row per run, as docs/RESULTS.md shows them.
 //
@@ -16,6 +17,10 @@
 //                       [--hold-after N]  (contact.friction_hold_after; 0: statuses never held)
 //                       [--normal-update newton|loop|newton_frictionless]
 //                       [--facing on|off]  (contact.facing_particles, default on)
+//                       [--end-spin free|held]  (squeeze: the spin of the fibres' held ends;
+//                       default free, bench/contact_scenes.h holdEndSpin)
+//                       [--increments N]  (of the last step: the squeeze, or the twist)
+//                       [--tolerance T]  (every step's forceTolerance, default 1e-8)
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -50,6 +55,7 @@ struct Outcome {
   double viscous = 0;  // largest viscous force / reference force of a converged increment
   int held = 0;        // most elements with a held stick/slip status in an increment
   double toolForce = 0;  // the top tool's force along z at the last converged increment, N
+  double friction = 0;   // sum of |friction force| over the fibre-fibre elements there, N
   std::string failure;
 };
 
@@ -76,6 +82,9 @@ Outcome run(const SceneDef& scene, const WorldDef& def) {
     }
     o.reached = w.time();
     if (w.scene().tools.size() > 1) o.toolForce = w.toolReaction(1).z();
+    const ContactSnapshot c = w.contactSnapshot();
+    for (Index e = 0; e < c.size(); ++e)
+      if (!c.tool[e]) o.friction += Vec3(c.friction[e]).norm();
   });
   return o;
 }
@@ -84,11 +93,11 @@ void printRow(const char* load, size_t fibres, int elements, double mu, double p
               const Outcome& o) {
   const double other = o.wall - o.assemble - o.factorise - o.solve;
   const auto share = [&](double x) { return 100 * x / o.wall; };
-  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1e | %d | %.6g | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
+  std::printf("| %s | %zu x %d | %.1f | %.0e | %s | %d | %.1f / %d | %d | %.1e | %d | %.6g | %.6g | %.1f | %.0f / %.0f / %.0f / %.0f |\n",
               load, fibres, elements, mu, pMax,
               o.failure.empty() ? "yes" : ("no, t = " + std::to_string(o.reached)).c_str(),
               o.increments, o.increments ? double(o.iterations) / o.increments : 0.0,
-              o.maxIterations, o.cutbacks, o.viscous, o.held, o.toolForce, o.wall, share(o.assemble), share(o.factorise),
+              o.maxIterations, o.cutbacks, o.viscous, o.held, o.toolForce, o.friction, o.wall, share(o.assemble), share(o.factorise),
               share(o.solve), share(other));
   if (!o.failure.empty()) std::printf("  failure: %s\n", o.failure.c_str());
 }
@@ -103,6 +112,9 @@ int main(int argc, char** argv) {
   double damping = 0;
   int holdAfter = ContactDef{}.frictionHoldAfter;
   bool facing = ContactDef{}.facingParticles;
+  bool heldSpin = false;
+  int increments = 0;        // 0: the scene's
+  double tolerance = 0;      // 0: the step's forceTolerance
   NormalUpdate normalUpdate = ContactDef{}.normalUpdate;
   WorldDef def;
   def.threads = 2;
@@ -121,24 +133,32 @@ int main(int argc, char** argv) {
                      : !std::strcmp(argv[i + 1], "newton") ? NormalUpdate::Newton
                                                            : NormalUpdate::NewtonFrictionless;
     if (!std::strcmp(argv[i], "--facing")) facing = !std::strcmp(argv[i + 1], "on");
+    if (!std::strcmp(argv[i], "--end-spin")) heldSpin = !std::strcmp(argv[i + 1], "held");
+    if (!std::strcmp(argv[i], "--increments")) increments = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--tolerance")) tolerance = std::atof(argv[i + 1]);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::printf("threads %d, line search %s, damping %g, friction_hold_after %d, facing particles "
-              "%s, normal update %s\n\n",
+              "%s, normal update %s, squeezed fibres' end spin %s\n\n",
               def.threads, lineSearch ? "on" : "off", damping, holdAfter, facing ? "on" : "off",
               normalUpdate == NormalUpdate::Loop     ? "loop"
               : normalUpdate == NormalUpdate::Newton ? "newton"
-                                                     : "newton_frictionless");
+                                                     : "newton_frictionless",
+              heldSpin ? "held" : "free");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "
               "per increment, mean / max | cutbacks | viscous force, max | held statuses, max | "
-              "tool force N | wall s | %% asm / fac / sol / other |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+              "tool force N | friction sum N | wall s | %% asm / fac / sol / other |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (double r : rings)
     for (const std::string& load : loads)
       for (double mu : mus)
         for (double p : pMaxes) {
           SceneDef s = load == "twist" ? scenes::twistedBundle(int(r), elements, p, mu)
                                        : scenes::bundle(int(r), elements, 0.01, p, mu);
+          if (heldSpin && load != "twist") scenes::holdEndSpin(s);
+          if (increments > 0) s.steps.back().increments = increments;
+          if (tolerance > 0)
+            for (StepDef& st : s.steps) st.forceTolerance = tolerance;
           for (StepDef& st : s.steps) st.lineSearch = lineSearch, st.damping = damping;
           s.contact.frictionHoldAfter = holdAfter;
           s.contact.normalUpdate = normalUpdate;

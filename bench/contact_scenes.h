@@ -3,7 +3,11 @@
 // bundle(rings, elements, squeeze, pMax, mu): a hexagonal bundle of 1 + 3 rings (rings + 1)
 // touching fibres (R = 0.1 mm, L = 4 mm, E = 4000 MPa) along x, pressed in z between two plane
 // tools, the top one moving down by `squeeze` mm in 10 increments; ends held axially (x, y),
-// friction mu between fibres and with the tools, p_max in mm, stabilisation 1e-4 N/mm.
+// friction mu between fibres and with the tools, p_max in mm, stabilisation 1e-4 N/mm. Each
+// fibre is free to spin about its axis: only friction holds that spin, and not at all once every
+// contact of the fibre slips (holdEndSpin below removes the mode).
+// holdEndSpin(s): also holds the y component of the director g1 (z at the start) at every held
+// end: the section's spin about the fibre axis there, to first order (ends gripped in jaws).
 // twistedBundle(rings, elements, pMax, mu): the same bundle without tools, every fibre clamped
 // at both ends; step 1 pulls the end sections by 0.004 mm (0.1% strain) in 2 increments, step 2
 // turns them by 90 degrees about the bundle axis (x, through the end centre) under that
@@ -83,6 +87,11 @@ inline SceneDef bundle(int rings, int elements, double squeeze, double pMax, dou
   st.increments = 10;
   s.steps.push_back(st);
   return s;
+}
+
+inline void holdEndSpin(SceneDef& s) {
+  for (BcDef& b : s.bcs)
+    if (b.kind == BcKind::Fix) b.dofs[G1Y] = true;
 }
 
 inline SceneDef twistedBundle(int rings, int elements, double pMax, double mu) {

@@ -51,6 +51,37 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(b.output == "fibra: error: " + bad + ": fibres[0].radius: must be > 0, got -1\n");
 }
 
+TEST_CASE("fibra check notes the fibres whose spin only friction holds") {
+  // The bundle sample's fibres are held at their two end nodes in x and y: no director is held,
+  // so their spin about their axes has no stiffness once their contacts slip. Holding g1y at
+  // the ends, or no friction anywhere, removes the note.
+  TempDir scratch("cli_spin");
+  const std::string scene = sourcePath("samples/bundle_squeeze.json");
+  const RunResult r = runFibra({"check", scene}, scratch);
+  REQUIRE(r.status == 0);
+  CHECK(countLines(r.output, R"(^  note: 7 fibres \(f0, f1, f2, f3, \.\.\.\) hold no director: )"
+                             R"(friction alone holds their spin)") == 1);
+  nlohmann::json j = nlohmann::json::parse(readFile(scene), nullptr, true, true);
+  for (auto& b : j["boundary_conditions"]) b["dofs"] = {"x", "y", "g1y"};
+  writeFile(scratch / "gripped.json", j.dump());
+  const RunResult g = runFibra({"check", scratch / "gripped.json"}, scratch);
+  REQUIRE(g.status == 0);
+  CHECK(g.output.find("note: ") == std::string::npos);
+  j = nlohmann::json::parse(readFile(scene), nullptr, true, true);
+  j["boundary_conditions"][0]["dofs"] = {"x", "y", "g1y"};  // f0 at its start: no longer noted
+  j["contact"]["friction"] = 0;
+  j["tools"][0]["friction"] = 0;
+  writeFile(scratch / "one.json", j.dump());
+  const RunResult o = runFibra({"check", scratch / "one.json"}, scratch);
+  REQUIRE(o.status == 0);
+  CHECK(countLines(o.output, R"(^  note: 6 fibres \(f1, f2, f3, f4, \.\.\.\) hold no director)") == 1);
+  j["tools"][1]["friction"] = 0;
+  writeFile(scratch / "frictionless.json", j.dump());
+  const RunResult f = runFibra({"check", scratch / "frictionless.json"}, scratch);
+  REQUIRE(f.status == 0);
+  CHECK(f.output.find("note: ") == std::string::npos);
+}
+
 TEST_CASE("fibra check and run show the pair rules, classes, contact laws and forced normals") {
   TempDir scratch("cli_pairs");
   const std::string scene = sourcePath("samples/forced_normals.json");
