@@ -52,34 +52,58 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
 }
 
 TEST_CASE("fibra check notes the fibres whose spin only friction holds") {
-  // The bundle sample's fibres are held at their two end nodes in x and y: no director is held,
-  // so their spin about their axes has no stiffness once their contacts slip. Holding g1y at
-  // the ends, or no friction anywhere, removes the note.
+  // The bundle sample's straight fibres (along x, director g1 along z) are held at their two
+  // end nodes in x and y only: their spin about x moves no held DOF. The spin turns g1 towards
+  // -y and g2 towards -z, so holding g1y (or g2z) at an end holds it, and g1x, g1z or g2y do not.
   TempDir scratch("cli_spin");
+  std::filesystem::create_directories(scratch.path());
   const std::string scene = sourcePath("samples/bundle_squeeze.json");
-  const RunResult r = runFibra({"check", scene}, scratch);
-  REQUIRE(r.status == 0);
-  CHECK(countLines(r.output, R"(^  note: 7 fibres \(f0, f1, f2, f3, \.\.\.\) hold no director: )"
-                             R"(friction alone holds their spin)") == 1);
-  nlohmann::json j = nlohmann::json::parse(readFile(scene), nullptr, true, true);
-  for (auto& b : j["boundary_conditions"]) b["dofs"] = {"x", "y", "g1y"};
-  writeFile(scratch / "gripped.json", j.dump());
-  const RunResult g = runFibra({"check", scratch / "gripped.json"}, scratch);
-  REQUIRE(g.status == 0);
-  CHECK(g.output.find("note: ") == std::string::npos);
-  j = nlohmann::json::parse(readFile(scene), nullptr, true, true);
-  j["boundary_conditions"][0]["dofs"] = {"x", "y", "g1y"};  // f0 at its start: no longer noted
-  j["contact"]["friction"] = 0;
-  j["tools"][0]["friction"] = 0;
-  writeFile(scratch / "one.json", j.dump());
-  const RunResult o = runFibra({"check", scratch / "one.json"}, scratch);
-  REQUIRE(o.status == 0);
-  CHECK(countLines(o.output, R"(^  note: 6 fibres \(f1, f2, f3, f4, \.\.\.\) hold no director)") == 1);
-  j["tools"][1]["friction"] = 0;
-  writeFile(scratch / "frictionless.json", j.dump());
-  const RunResult f = runFibra({"check", scratch / "frictionless.json"}, scratch);
-  REQUIRE(f.status == 0);
-  CHECK(f.output.find("note: ") == std::string::npos);
+  const auto check = [&](const nlohmann::json& j, const char* name) {
+    writeFile(scratch / name, j.dump());
+    const RunResult r = runFibra({"check", scratch / name}, scratch);
+    REQUIRE_MESSAGE(r.status == 0, r.output);
+    return r.output;
+  };
+  const nlohmann::json sample = nlohmann::json::parse(readFile(scene), nullptr, true, true);
+  CHECK(countLines(check(sample, "sample.json"),
+                   R"(^  note: 7 fibres \(f0, f1, f2, f3, \.\.\.\) can spin freely: only )"
+                   R"(friction holds their spin about their axis, none once all their )"
+                   R"(contacts slip; if Newton stagnates, hold at an end a director component )"
+                   R"(the spin turns \(docs/METHOD.md "Free spin"\)$)") == 1);
+  for (const char* held : {"g1y", "g2z"}) {
+    CAPTURE(held);
+    nlohmann::json j = sample;
+    for (auto& b : j["boundary_conditions"]) b["dofs"] = {"x", "y", held};
+    CHECK(check(j, "gripped.json").find("note: ") == std::string::npos);
+  }
+  for (const char* held : {"g1x", "g1z", "g2y"}) {  // components the spin leaves alone
+    CAPTURE(held);
+    nlohmann::json j = sample;
+    for (auto& b : j["boundary_conditions"]) b["dofs"] = {"x", "y", held};
+    CHECK(countLines(check(j, "not_gripped.json"), R"(^  note: 7 fibres )") == 1);
+  }
+  // One fibre left free to spin: the singular.
+  nlohmann::json one = sample;
+  for (auto& b : one["boundary_conditions"])
+    if (b["group"] != "f3.start" && b["group"] != "f3.end") b["dofs"] = {"x", "y", "g1y"};
+  CHECK(countLines(check(one, "one.json"), R"(^  note: 1 fibre \(f3\) can spin freely: only )"
+                                           R"(friction holds its spin about its axis, none once )"
+                                           R"(all its contacts slip;)") == 1);
+  // Held at every node (positions only): still free to spin.
+  nlohmann::json all = one;
+  all["boundary_conditions"].push_back({{"type", "pin"}, {"group", "f1.all"}});
+  all["boundary_conditions"].erase(2);
+  all["boundary_conditions"].erase(2);  // f1's two ends, now in the pin
+  CHECK(countLines(check(all, "pinned.json"), R"(^  note: 2 fibres \(f1, f3\) can spin)") == 1);
+  // No friction that can act: no note (without friction anywhere, or with every step's
+  // friction factor 0).
+  nlohmann::json frictionless = sample;
+  frictionless["contact"]["friction"] = 0;
+  for (auto& t : frictionless["tools"]) t["friction"] = 0;
+  CHECK(check(frictionless, "frictionless.json").find("note: ") == std::string::npos);
+  nlohmann::json factor = sample;
+  factor["steps"][0]["friction_factor"] = 0;
+  CHECK(check(factor, "factor.json").find("note: ") == std::string::npos);
 }
 
 TEST_CASE("fibra check and run show the pair rules, classes, contact laws and forced normals") {
