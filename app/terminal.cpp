@@ -1,10 +1,10 @@
 #include "app/terminal.h"
 
 #include "engine/contact_setup.h"
+#include "engine/free_spin.h"
 #include "systems/linear_solver.h"
 #include "fibra/version.h"
 
-#include <Eigen/Geometry>
 #include <tbb/info.h>
 
 #include <cmath>
@@ -131,57 +131,11 @@ std::string contactLines(const World& world) {
   return out;
 }
 
-// Friction that can act: between fibres (the section's or a pair rule's mu, with two fibres or
-// self-contact) or with a tool, in a step whose friction factor is not 0.
-bool frictionCanAct(const SceneDef& s) {
-  bool scaled = false;
-  for (const StepDef& st : s.steps) scaled = scaled || st.frictionFactor > 0;
-  const bool pairs = s.contact.enabled && (s.fibres.size() > 1 || s.contact.selfContact);
-  bool mu = pairs && s.contact.friction > 0;
-  for (const ContactPairDef& r : s.contact.pairs) mu = mu || (pairs && r.friction > 0);
-  for (const ToolDef& t : s.tools) mu = mu || t.friction > 0;
-  return scaled && mu;
-}
-
-// Fibre f is straight in its reference state: every node within 1e-6 of its length of the line
-// through its end nodes.
-bool straight(const FibreStore& fs, Index f) {
-  const Index first = fs.firstNode[f], last = first + fs.nodeCount[f] - 1;
-  const Vec3 a = x0Of(fs.qRef, first), t = (x0Of(fs.qRef, last) - a).normalized();
-  for (Index n = first; n <= last; ++n) {
-    const Vec3 d = x0Of(fs.qRef, n) - a;
-    if ((d - d.dot(t) * t).norm() > 1e-6 * fs.length[f]) return false;
-  }
-  return true;
-}
-
-// Straight fibres held at positions only, as far as their spin goes: at least one position held,
-// and no held director component that the spin changes. A spin by phi about the unit axis t
-// turns a director g by phi t x g, so holding its component c holds the spin when
-// |e_c . (t x g)| > 0.1 |g|. Such a fibre's spin is held by contact friction alone, and by
-// nothing once all its contacts slip (the slip branch has no stiffness along the slip:
-// docs/METHOD.md "Free spin"). "" when no friction can act.
+// The fibres whose spin only friction holds (engine/free_spin.h), as a note.
 std::string freeSpinLine(const World& world) {
   const SceneDef& s = world.scene();
-  const FibreStore& f = world.fibres();
-  if (!frictionCanAct(s)) return "";
-  std::vector<bool> position(f.fibres(), false), spin(f.fibres(), false);
-  for (Index d : world.constraints().dof) {
-    const Index node = d / kNodeDofs, c = d % kNodeDofs;
-    const auto next = std::upper_bound(f.firstNode.begin(), f.firstNode.end(), node);
-    const Index fibre = Index(next - f.firstNode.begin()) - 1;
-    if (c < 3) {
-      position[fibre] = true;
-      continue;
-    }
-    const Index first = f.firstNode[fibre], last = first + f.nodeCount[fibre] - 1;
-    const Vec3 t = (x0Of(f.qRef, last) - x0Of(f.qRef, first)).normalized();
-    const Vec3 g = c < 6 ? Vec3(g1Of(f.qRef, node)) : Vec3(g2Of(f.qRef, node));
-    spin[fibre] = spin[fibre] || std::abs(t.cross(g)(c % 3)) > 0.1 * g.norm();
-  }
   std::vector<std::string> names;
-  for (Index i = 0; i < f.fibres(); ++i)
-    if (position[i] && !spin[i] && straight(f, i)) names.push_back(s.fibres[i].name);
+  for (Index i : freeSpinFibres(world)) names.push_back(s.fibres[i].name);
   if (names.empty()) return "";
   std::string list;
   for (size_t i = 0; i < names.size() && i < 4; ++i) list += (i ? ", " : "") + names[i];
