@@ -2,7 +2,6 @@
 
 #include <Eigen/Geometry>
 
-#include <algorithm>
 #include <cmath>
 
 namespace fibra {
@@ -42,9 +41,7 @@ std::vector<Index> freeSpinFibres(const World& world) {
   if (!frictionCanAct(world.scene())) return out;
   std::vector<bool> position(f.fibres(), false), gripped(f.fibres(), false);
   for (Index d : world.constraints().dof) {
-    const Index node = d / kNodeDofs, c = d % kNodeDofs;
-    const auto next = std::upper_bound(f.firstNode.begin(), f.firstNode.end(), node);
-    const Index fibre = Index(next - f.firstNode.begin()) - 1;
+    const Index node = d / kNodeDofs, c = d % kNodeDofs, fibre = f.nodeFibre[node];
     if (c < 3) {
       position[fibre] = true;
       continue;
