@@ -31,7 +31,35 @@ inline void lagrangeShape(int order, double z, double* N, double* dN) {
   }
 }
 
-// Gauss-Legendre points and weights on [-1, 1], n = 1..4 (exact for degree 2n - 1).
+// Gauss-Legendre points and weights on [-1, 1] for any n >= 1 (exact for degree 2n - 1), in
+// increasing z: the roots of the Legendre polynomial P_n by Newton's method from
+// cos(pi (k + 3/4) / (n + 1/2)), P_n and P_n' by the three-term recurrence, w = 2 / ((1 - z^2)
+// P_n'(z)^2) (Abramowitz & Stegun 25.4.29). Used where n exceeds the tabulated rules below.
+inline void gaussLegendreAny(int n, double* z, double* w) {
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < (n + 1) / 2; ++k) {
+    double x = std::cos(pi * (k + 0.75) / (n + 0.5)), dp = 1;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = x;  // P_0, P_1
+      for (int j = 2; j <= n; ++j) {
+        const double p2 = ((2 * j - 1) * x * p1 - (j - 1) * p0) / j;
+        p0 = p1, p1 = p2;
+      }
+      if (n == 1) p0 = 1, p1 = x;
+      dp = n * (x * p1 - p0) / (x * x - 1);  // P_n' from P_n and P_{n-1}
+      const double dx = p1 / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    const double weight = 2 / ((1 - x * x) * dp * dp);
+    z[k] = -x, z[n - 1 - k] = x;
+    w[k] = w[n - 1 - k] = weight;
+  }
+  if (n % 2 == 1) z[n / 2] = 0;  // the middle root, exactly
+}
+
+// Gauss-Legendre points and weights on [-1, 1] (exact for degree 2n - 1): n = 1..4 tabulated,
+// larger n computed (gaussLegendreAny).
 inline void gaussLegendre(int n, double* z, double* w) {
   switch (n) {
     case 1:
@@ -50,7 +78,7 @@ inline void gaussLegendre(int n, double* z, double* w) {
       w[0] = w[2] = 5.0 / 9, w[1] = 8.0 / 9;
       return;
     }
-    default: {
+    case 4: {
       const double a = std::sqrt(3.0 / 7 - 2.0 / 7 * std::sqrt(1.2));
       const double b = std::sqrt(3.0 / 7 + 2.0 / 7 * std::sqrt(1.2));
       const double wa = (18 + std::sqrt(30.0)) / 36, wb = (18 - std::sqrt(30.0)) / 36;
@@ -58,6 +86,8 @@ inline void gaussLegendre(int n, double* z, double* w) {
       w[0] = w[3] = wb, w[1] = w[2] = wa;
       return;
     }
+    default:
+      gaussLegendreAny(n, z, w);
   }
 }
 

@@ -1,10 +1,13 @@
 #include "systems/tool_detection.h"
 
 #include "core/columns.h"
+#include "systems/interpolation.h"
 #include "systems/particle.h"
 #include "systems/tool_geometry.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <utility>
@@ -56,17 +59,19 @@ std::optional<std::pair<Section, SurfacePoint>> sectionNearTool(const FibreStore
   return std::pair{sec, centre};
 }
 
-// Lateral contact at (element, z), one of `points` Gauss points of the element: the outline
-// point facing the tool (direction -N), carrying h / points of the centreline (times the stretch).
+// Lateral contact at (element, z), a Gauss point of weight w (on [-1, 1]): the outline point
+// facing the tool (direction -N), carrying w h / 2 of the centreline (times the stretch); its
+// penalty weight w order / 2 is 1 on the element's default rule (one point per order).
 void addLateral(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
-                int points, const RigidMotion& m, double proximity, ToolContactStore& c) {
+                double w, const RigidMotion& m, double proximity, ToolContactStore& c) {
   const auto near = sectionNearTool(fs, tools, tool, e, z, m, proximity);
   if (!near) return;
   const auto& [sec, centre] = *near;
   const Index f = fs.elementFibre[e];
-  const double R = fs.radius[f], length = elementLength(fs, f) / points * sec.dx0ds.norm();
+  const double R = fs.radius[f], length = 0.5 * w * elementLength(fs, f) * sec.dx0ds.norm();
   addParticle(fs, tools, tool, e, z, length, sec, outlinePoint(sec.g1, sec.g2, R, -centre.normal),
               m, c);
+  c.weight.back() = 0.5 * w * fs.order[f];
 }
 
 // The flat end face of a fibre at (element, z = +-1): its centre and kEndRim points of its rim
@@ -87,16 +92,35 @@ void addEndFace(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
 
 }  // namespace
 
+double toolCurvatureRadius(const ToolStore& tools, Index tool) {
+  return tools.kind[tool] == ToolKind::Cylinder ? tools.radius[tool]
+                                                : std::numeric_limits<double>::infinity();
+}
+
+int toolPointsPerElement(double h, double rho, double pMax, int order) {
+  const double spacing = std::sqrt(2 * rho * pMax);  // s^2 / (8 rho) = p_max / 4
+  double z[kMaxToolPoints], w[kMaxToolPoints];
+  for (int n = order; n < kMaxToolPoints; ++n) {
+    gaussLegendre(n, z, w);
+    double widest = (1 - z[n - 1]) + (z[0] + 1);  // across the element's end, in z
+    for (int k = 1; k < n; ++k) widest = std::max(widest, z[k] - z[k - 1]);
+    if (0.5 * h * widest <= spacing) return n;
+  }
+  return kMaxToolPoints;
+}
+
 void detectToolContacts(const FibreStore& fs, const ToolStore& tools, const ContactParams& params,
                         const IterationInput& input, ToolContactStore& c) {
   clearColumns(c);
   for (Index t = 0; t < tools.size(); ++t) {
     const RigidMotion m = toolMotion(tools, t, input.time);
-    for (Index e = 0; e < fs.elements(); ++e) {
-      const int order = fs.order[fs.elementFibre[e]];
-      const double zs[2] = {-1 / std::sqrt(3.0), 1 / std::sqrt(3.0)};
-      for (int k = 0; k < order; ++k)
-        addLateral(fs, tools, t, e, order == 2 ? zs[k] : 0.0, order, m, params.toolProximity, c);
+    for (Index f = 0; f < fs.fibres(); ++f) {
+      const int n = toolPointsPerElement(elementLength(fs, f), toolCurvatureRadius(tools, t),
+                                         tools.pMax[t], fs.order[f]);
+      double z[kMaxToolPoints], w[kMaxToolPoints];
+      gaussLegendre(n, z, w);
+      for (Index e = fs.firstElement[f]; e < fs.firstElement[f] + fs.elementCount[f]; ++e)
+        for (int k = 0; k < n; ++k) addLateral(fs, tools, t, e, z[k], w[k], m, params.toolProximity, c);
     }
     for (Index f = 0; f < fs.fibres(); ++f) {
       const Index first = fs.firstElement[f], last = first + fs.elementCount[f] - 1;

@@ -4,9 +4,10 @@
 // Reads  FibreStore (q), ToolStore, ContactParams (tool proximity), IterationInput (time).
 // Writes ToolContactStore (overwritten; the friction reference is left to
 //        systems/friction_reference.h).
-// Along every fibre element, at its Gauss points (2 per quadratic element, z = -+1/sqrt(3); 1 per
-// linear, z = 0), each carrying h / points of the centreline, so that a uniform line pressure
-// gives the nodes the consistent line load exactly), a contact element is made when the centreline is
+// Along every fibre element, at its n Gauss points (toolPointsPerElement: 2 per quadratic element
+// and 1 per linear on a plane, more on a cylinder), each carrying w h / 2 of the centreline (w its
+// Gauss weight), so that a uniform line pressure gives the nodes the consistent line load
+// exactly), a contact element is made when the centreline is
 // within R + Delta of the surface (Delta: the scene's proximity distance; by default
 // max(R, h/2), h the element length, so that a fibre approaching the tool has elements before it
 // arrives); its particle is the outline point facing the tool (paper Fig. 4 with the direction
@@ -23,6 +24,21 @@
 #include "components/tools.h"
 
 namespace fibra {
+
+// The most Gauss points a fibre element takes against one tool.
+constexpr int kMaxToolPoints = 32;
+
+// The smallest radius of curvature of a tool's surface, mm: a cylinder's radius; infinite for a
+// plane.
+double toolCurvatureRadius(const ToolStore& tools, Index tool);
+
+// Gauss points per element of length h (mm, order 1 or 2) against a surface of smallest radius
+// of curvature rho (mm, infinite for a plane) and p_max (mm): the fewest, from `order` up, whose
+// widest spacing along the fibre (between neighbours and across the element's ends) is at most
+// sqrt(2 rho p_max). A straight fibre across a convex tool is then never overlapped between
+// two of its points by more than the surface's sagitta over that spacing, s^2 / (8 rho) =
+// p_max / 4, beyond what the points see; kMaxToolPoints at most.
+int toolPointsPerElement(double h, double rho, double pMax, int order);
 
 void detectToolContacts(const FibreStore& fibres, const ToolStore& tools,
                         const ContactParams& params, const IterationInput& input,
