@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Brute-force true overlap of a run's fibres with rigid cylinders, from its final_state.csv
+(independent of the tool contact elements): every fibre's centreline and directors sampled at
+--samples points per element (quadratic elements: Lagrange interpolation of the three nodes),
+each sample's overlap with each cylinder rho + w - d (outside the cylinder) with d the distance
+of the centreline point from the cylinder's axis and w = R |G^T n| the fibre's half-width along
+n = the direction from the axis (G = [g1 g2]). The cylinders are given where they are at the
+final state (point of the axis after the tool's displacement, axis, radius). Prints the largest
+overlap (mm and in units of --pmax) and where it is.
+
+  python3 bench/tool_overlap.py out/yarn_procedure/final_state.csv --radius 0.01 --pmax 1e-4 \\
+      --cylinder 0,-0.138,0.25,1,0,0,0.1 --cylinder 0,0.138,0.25,1,0,0,0.1
+"""
+import argparse
+import csv
+import math
+import os
+import sys
+from collections import defaultdict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from centreline_overlap import half_width, section  # noqa: E402
+
+
+def cylinder(text):
+    v = [float(x) for x in text.split(",")]
+    if len(v) != 7 or v[6] <= 0:
+        raise argparse.ArgumentTypeError("expected px,py,pz,ax,ay,az,radius with radius > 0")
+    a = math.sqrt(sum(x * x for x in v[3:6]))
+    if a == 0:
+        raise argparse.ArgumentTypeError("the axis is zero")
+    return v[0:3], [x / a for x in v[3:6]], v[6]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p.add_argument("final_state")
+    p.add_argument("--radius", type=float, required=True, help="fibre radius R, mm")
+    p.add_argument("--pmax", type=float, default=0, help="p_max, mm (for the ratio)")
+    p.add_argument("--samples", type=int, default=400, help="samples per element")
+    p.add_argument("--cylinder", type=cylinder, action="append", required=True,
+                   help="px,py,pz,ax,ay,az,radius at the final state (repeatable)")
+    a = p.parse_args()
+    fibres = defaultdict(list)
+    for r in csv.DictReader(open(a.final_state)):
+        fibres[r["fibre"]].append([float(r[k]) for k in
+                                   ("x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z")])
+    best = (0.0, None, None, None)
+    for name, rows in fibres.items():
+        elements = (len(rows) - 1) // 2
+        for k in range(elements * a.samples + 1):
+            u = k / a.samples
+            x, g1, g2 = section(rows, u)
+            for c, (point, axis, rho) in enumerate(a.cylinder):
+                d = [x[i] - point[i] for i in range(3)]
+                along = sum(d[i] * axis[i] for i in range(3))
+                radial = [d[i] - along * axis[i] for i in range(3)]
+                dist = math.sqrt(sum(v * v for v in radial))
+                if dist == 0:
+                    continue
+                n = [v / dist for v in radial]
+                overlap = rho + half_width(g1, g2, n, a.radius) - dist
+                if overlap > best[0]:
+                    best = (overlap, name, u, c)
+    overlap, name, u, c = best
+    if name is None:
+        print("no overlap with the cylinders")
+        return
+    ratio = f" ({overlap / a.pmax:.2f} p_max)" if a.pmax > 0 else ""
+    print(f"largest overlap {overlap:.4g} mm{ratio}: fibre {name}, element coordinate {u:.3f}, "
+          f"cylinder {c}")
+
+
+if __name__ == "__main__":
+    main()
