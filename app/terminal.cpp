@@ -2,7 +2,9 @@
 
 #include "engine/contact_setup.h"
 #include "engine/free_spin.h"
+#include "systems/interpolation.h"
 #include "systems/linear_solver.h"
+#include "systems/tool_detection.h"
 #include "fibra/version.h"
 
 #include <tbb/info.h>
@@ -100,13 +102,25 @@ std::string forcedLines(const SceneDef& s) {
   return out;
 }
 
+// Each tool's kind, friction, p_max and the contact points it takes per fibre element (the
+// range over the fibres: systems/tool_detection.h toolPointsPerElement).
 std::string toolLines(const World& world) {
   const ToolStore& tools = world.tools();
+  const FibreStore& fs = world.fibres();
   std::string out = format("  tools: %d\n", tools.size());
-  for (Index t = 0; t < tools.size(); ++t)
-    out += format("    %s: %s, mu %g, p_max %g mm\n", tools.name[t].c_str(),
-                  tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder", tools.friction[t],
-                  tools.pMax[t]);
+  for (Index t = 0; t < tools.size(); ++t) {
+    int fewest = kMaxToolPoints, most = 0;
+    for (Index f = 0; f < fs.fibres(); ++f) {
+      const int n = toolPointsPerElement(elementLength(fs, f), toolCurvatureRadius(tools, t),
+                                         tools.pMax[t], fs.order[f]);
+      fewest = std::min(fewest, n), most = std::max(most, n);
+    }
+    if (most == 0) fewest = 0;  // no fibres
+    const std::string points = fewest == most ? format("%d", most) : format("%d-%d", fewest, most);
+    out += format("    %s: %s, mu %g, p_max %g mm, %s points per fibre element\n",
+                  tools.name[t].c_str(), tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder",
+                  tools.friction[t], tools.pMax[t], points.c_str());
+  }
   return out;
 }
 

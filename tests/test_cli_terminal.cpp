@@ -42,8 +42,13 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(countLines(r.output, R"(^  7 fibres, \d+ nodes, \d+ elements, \d+ DOFs$)") == 1);
   CHECK(countLines(r.output, R"(^  contact: fibre-fibre, p_max [0-9.e-]+ mm, mu 0.1, )") == 1);
   CHECK(countLines(r.output, R"(^  tools: 2$)") == 1);
-  CHECK(countLines(r.output, R"(^    (bottom|top): plane, mu 0.1, p_max [0-9.e-]+ mm$)") == 2);
+  CHECK(countLines(r.output, R"(^    (bottom|top): plane, mu 0.1, p_max [0-9.e-]+ mm, 2 points per fibre element$)") == 2);
   CHECK(r.output.ends_with("fibra: " + scene + ": the scene is valid\n"));
+  // A cylinder takes the points its curvature needs (systems/tool_detection.h): R = 0.1 mm
+  // against elements of 0.0625 mm and p_max 1e-4 mm, 22.
+  const RunResult y = runFibra({"check", sourcePath("samples/yarn_procedure.json")}, scratch);
+  CHECK(y.status == 0);
+  CHECK(countLines(y.output, R"(^    (bottom|top): cylinder, mu 0, p_max 0.0001 mm, 22 points per fibre element$)") == 2);
   CHECK(countLines(r.output, "^step ") == 0);  // nothing solved
   const std::string bad = sourcePath("samples/bad/negative_radius.json");
   const RunResult b = runFibra({"check", bad}, scratch);
