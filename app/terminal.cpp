@@ -109,17 +109,25 @@ std::string toolLines(const World& world) {
   const FibreStore& fs = world.fibres();
   std::string out = format("  tools: %d\n", tools.size());
   for (Index t = 0; t < tools.size(); ++t) {
+    const double rho = toolCurvatureRadius(tools, t);
     int fewest = kMaxToolPoints, most = 0;
+    double sagitta = 0;  // the largest sagitta bound where the cap is reached, mm
     for (Index f = 0; f < fs.fibres(); ++f) {
-      const int n = toolPointsPerElement(elementLength(fs, f), toolCurvatureRadius(tools, t),
-                                         tools.pMax[t], fs.order[f]);
+      const double h = elementLength(fs, f);
+      const int n = toolPointsPerElement(h, rho, tools.pMax[t], fs.order[f]);
       fewest = std::min(fewest, n), most = std::max(most, n);
+      if (n == kMaxToolPoints) sagitta = std::max(sagitta, toolSagittaBound(h, rho, n));
     }
     if (most == 0) fewest = 0;  // no fibres
     const std::string points = fewest == most ? format("%d", most) : format("%d-%d", fewest, most);
     out += format("    %s: %s, mu %g, p_max %g mm, %s points per fibre element\n",
                   tools.name[t].c_str(), tools.kind[t] == ToolKind::Plane ? "plane" : "cylinder",
                   tools.friction[t], tools.pMax[t], points.c_str());
+    if (sagitta > 0.25 * tools.pMax[t])
+      out += format("    note: %s caps at %d points per element: a fibre across it may be "
+                    "overlapped by up to %.3g p_max between two points (finer elements or a "
+                    "larger p_max bring it to 0.25)\n",
+                    tools.name[t].c_str(), kMaxToolPoints, sagitta / tools.pMax[t]);
   }
   return out;
 }

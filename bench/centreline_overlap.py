@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Brute-force true overlap of a run's fibres, from its final_state.csv (independent of the
 contact elements): every fibre's centreline and directors sampled at --samples points per
-element (quadratic elements: Lagrange interpolation of the three nodes), every pair of samples
+element (fibres of quadratic elements, fibra's default: Lagrange interpolation of the three nodes), every pair of samples
 on different fibres, or on one fibre more than --min-elements elements apart (self-contact),
 within --reach mm; each pair closer than 2.2 R is then refined to the closest points of the two
 centrelines near it (alternating golden-section searches within one sample spacing), so a
@@ -17,6 +17,33 @@ import argparse
 import csv
 import math
 from collections import defaultdict
+
+
+def load_fibres(path, columns=("x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z")):
+    """{fibre: [[column values] per node]} from a run's final_state.csv; exits with a message
+    naming the file and what is wrong (missing, not a final state, no rows, or a fibre whose node
+    count is even: these scripts take fibres of quadratic elements, 2 n + 1 nodes)."""
+    try:
+        with open(path, newline="") as f:
+            reader = csv.DictReader(f)
+            missing = [c for c in ("fibre",) + tuple(columns) if c not in (reader.fieldnames or [])]
+            if missing:
+                raise SystemExit(f"{path}: not a final_state.csv (no column {', '.join(missing)})")
+            fibres = defaultdict(list)
+            for line, r in enumerate(reader, start=2):
+                try:
+                    fibres[r["fibre"]].append([float(r[k]) for k in columns])
+                except (TypeError, ValueError):
+                    raise SystemExit(f"{path}:{line}: a value is missing or not a number")
+    except OSError as e:
+        raise SystemExit(f"{path}: {e.strerror}")
+    if not fibres:
+        raise SystemExit(f"{path}: no nodes")
+    for name, rows in fibres.items():
+        if len(rows) < 3 or len(rows) % 2 == 0:
+            raise SystemExit(f"{path}: fibre {name} has {len(rows)} nodes; these scripts take "
+                             "fibres of quadratic elements (2 n + 1 nodes)")
+    return fibres
 
 
 def section(rows, u):
@@ -77,10 +104,9 @@ def main():
                    help="self-contact: pairs on one fibre at least this many elements apart")
     p.add_argument("--reach", type=float, default=0, help="pairs within this distance, mm (0: 2.5 R)")
     a = p.parse_args()
-    fibres = defaultdict(list)
-    for r in csv.DictReader(open(a.final_state)):
-        fibres[r["fibre"]].append([float(r[k]) for k in
-                                   ("x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z")])
+    if a.samples < 1 or not a.radius > 0 or not a.pmax >= 0:
+        p.error("--samples must be >= 1, --radius > 0 and --pmax >= 0")
+    fibres = load_fibres(a.final_state)
     pts = [(f, s) for f, rows in fibres.items() for s in samples(rows, a.samples)]
     reach = a.reach or 2.5 * a.radius
     best = (0.0, None, None)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Kinks of a run's fibres at their element ends, from its final_state.csv: at every interior
-element end of every fibre of quadratic elements, the angle between the tangents of the two
+element end of every fibre (of quadratic elements, fibra's default), the angle between the tangents of the two
 elements that meet there (dx/dz of each element's Lagrange interpolation of its three nodes, at
 z = +1 and z = -1). A fibre with bending stiffness is smooth there to discretisation error; a
 string (bending_factor 0) may zigzag from node to node. Prints the mean and the largest angle
@@ -9,9 +9,12 @@ string (bending_factor 0) may zigzag from node to node. Prints the mean and the 
   python3 bench/fibre_kinks.py out/yarn_procedure/final_state.csv
 """
 import argparse
-import csv
 import math
-from collections import defaultdict
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from centreline_overlap import load_fibres  # noqa: E402
 
 
 def tangent_end(a, b, c):
@@ -33,9 +36,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("final_state")
     a = p.parse_args()
-    fibres = defaultdict(list)
-    for r in csv.DictReader(open(a.final_state)):
-        fibres[r["fibre"]].append([float(r[k]) for k in ("x", "y", "z")])
+    fibres = load_fibres(a.final_state, ("x", "y", "z"))
     kinks = []
     for name, rows in fibres.items():
         elements = (len(rows) - 1) // 2

@@ -17,7 +17,8 @@ namespace {
 
 // A contact element for the particle (element, z, xi): its normal is the surface normal at the
 // closest point, its tool point the surface point under it. A lateral particle (length > 0) has
-// weight 1; an end-face particle (length 0) |t . N|, t the unit tangent: the face bears fully on
+// weight 1 here (addLateral sets its Gauss weight); an end-face particle (length 0) |t . N|, t
+// the unit tangent: the face bears fully on
 // a tool it faces and not at all on one the fibre lies along, where its rim's lowest point would
 // otherwise add a point force to the line contact the lateral particles already carry.
 void addParticle(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
@@ -93,19 +94,24 @@ void addEndFace(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
 }  // namespace
 
 double toolCurvatureRadius(const ToolStore& tools, Index tool) {
-  return tools.kind[tool] == ToolKind::Cylinder ? tools.radius[tool]
-                                                : std::numeric_limits<double>::infinity();
+  return tools.kind[tool] == ToolKind::Cylinder && !tools.inside[tool]
+             ? tools.radius[tool]
+             : std::numeric_limits<double>::infinity();
+}
+
+double toolSagittaBound(double h, double rho, int n) {
+  double z[kMaxToolPoints], w[kMaxToolPoints];
+  gaussLegendre(n, z, w);
+  double widest = (1 - z[n - 1]) + (z[0] + 1);  // across the element's end, in z
+  for (int k = 1; k < n; ++k) widest = std::max(widest, z[k] - z[k - 1]);
+  const double s = 0.5 * h * widest;
+  return s * s / (8 * rho);
 }
 
 int toolPointsPerElement(double h, double rho, double pMax, int order) {
-  const double spacing = std::sqrt(2 * rho * pMax);  // s^2 / (8 rho) = p_max / 4
-  double z[kMaxToolPoints], w[kMaxToolPoints];
-  for (int n = order; n < kMaxToolPoints; ++n) {
-    gaussLegendre(n, z, w);
-    double widest = (1 - z[n - 1]) + (z[0] + 1);  // across the element's end, in z
-    for (int k = 1; k < n; ++k) widest = std::max(widest, z[k] - z[k - 1]);
-    if (0.5 * h * widest <= spacing) return n;
-  }
+  if (!std::isfinite(rho)) return order;
+  for (int n = order; n < kMaxToolPoints; ++n)
+    if (toolSagittaBound(h, rho, n) <= 0.25 * pMax) return n;
   return kMaxToolPoints;
 }
 

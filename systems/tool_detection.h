@@ -28,16 +28,21 @@ namespace fibra {
 // The most Gauss points a fibre element takes against one tool.
 constexpr int kMaxToolPoints = 32;
 
-// The smallest radius of curvature of a tool's surface, mm: a cylinder's radius; infinite for a
-// plane.
+// The smallest radius of curvature of a tool's convex surface, mm: a cylinder's radius with the
+// fibres outside it; infinite for a plane and for a cylinder with the fibres inside (a chord
+// between two points on a concave wall moves away from it).
 double toolCurvatureRadius(const ToolStore& tools, Index tool);
 
+// The sagitta s^2 / (8 rho) over the widest spacing s of n Gauss points per element of length h
+// (between neighbours and across the element's ends; mm, mm, -): how deep a straight fibre
+// across a convex surface of radius rho can be overlapped between two points beyond what they
+// see, wherever the crest falls, mm.
+double toolSagittaBound(double h, double rho, int n);
+
 // Gauss points per element of length h (mm, order 1 or 2) against a surface of smallest radius
-// of curvature rho (mm, infinite for a plane) and p_max (mm): the fewest, from `order` up, whose
-// widest spacing along the fibre (between neighbours and across the element's ends) is at most
-// sqrt(2 rho p_max). A straight fibre across a convex tool is then never overlapped between
-// two of its points by more than the surface's sagitta over that spacing, s^2 / (8 rho) =
-// p_max / 4, beyond what the points see; kMaxToolPoints at most.
+// of curvature rho (mm, infinite: the element's own rule) and p_max (mm): the fewest, from
+// `order` up, whose sagitta bound is at most p_max / 4 (widest spacing s <= sqrt(2 rho p_max));
+// kMaxToolPoints at most, where the bound may exceed p_max / 4 (fibra check says by how much).
 int toolPointsPerElement(double h, double rho, double pMax, int order);
 
 void detectToolContacts(const FibreStore& fibres, const ToolStore& tools,

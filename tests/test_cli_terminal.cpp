@@ -49,6 +49,21 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   const RunResult y = runFibra({"check", sourcePath("samples/yarn_procedure.json")}, scratch);
   CHECK(y.status == 0);
   CHECK(countLines(y.output, R"(^    (bottom|top): cylinder, mu 0, p_max 0.0001 mm, 22 points per fibre element$)") == 2);
+  CHECK(y.output.find("caps at") == std::string::npos);
+  // The roller sample with a roller 20x thinner and p_max 1e-5 mm: the 32 points of the cap leave
+  // a sagitta of (0.25 mm x 0.0966 / 2)^2 / (8 x 0.05 mm) = 3.65e-4 mm = 36.5 p_max, said.
+  std::filesystem::create_directories(scratch.path());
+  nlohmann::json roller = nlohmann::json::parse(readFile(sourcePath("samples/roller_drag.json")),
+                                                nullptr, true, true);
+  roller["tools"][0]["radius"] = 0.05;
+  roller["tools"][0]["max_penetration"] = 1e-5;
+  writeFile(scratch / "thin_roller.json", roller.dump());
+  const RunResult t = runFibra({"check", scratch / "thin_roller.json"}, scratch);
+  CHECK(t.status == 0);
+  CHECK(countLines(t.output, R"(^    roller: cylinder, mu 0.2, p_max 1e-05 mm, 32 points per fibre element$)") == 1);
+  CHECK(countLines(t.output, R"(^    note: roller caps at 32 points per element: a fibre across it may be )"
+                             R"(overlapped by up to 36.5 p_max between two points \(finer elements or a larger )"
+                             R"(p_max bring it to 0.25\)$)") == 1);
   CHECK(countLines(r.output, "^step ") == 0);  // nothing solved
   const std::string bad = sourcePath("samples/bad/negative_radius.json");
   const RunResult b = runFibra({"check", bad}, scratch);

@@ -62,7 +62,7 @@ TEST_CASE("contact appears, carries load and vanishes within one step") {
 TEST_CASE("an increment too large for Newton with contact is rescued by cutbacks") {
   SceneDef s = risingRoller(0.3, 1);
   s.tools[0].displacementTable = {{0, 1}, {0, 1}};  // the whole rise in one increment
-  // 6: the whole rise needs 18 iterations (the roller's crest sampled by 22 points per element,
+  // 6: the whole rise needs 18 iterations (the roller's crest sampled by 25 points per element,
   // systems/tool_detection.h); with 5 even 1/256 of it takes 6 (the frozen normals converge
   // linearly on the crest), and the cutbacks cannot rescue it.
   s.steps[0].maxIterations = 6;

@@ -180,27 +180,49 @@ TEST_CASE("tool points per element: a plane keeps the element's rule, a cylinder
 }
 
 TEST_CASE("a fibre pressed across a cylinder overlaps it by at most p_max plus the sampling's sagitta") {
-  // The fibre of dragScene (16 elements of 0.25 mm, a node over the cylinder's crest) pressed
-  // onto the cylinder (radius 1) by its end forces, frictionless, p_max = 1e-4 mm. Two Gauss
-  // points per element are 0.106 mm apart across the node over the crest, where the cylinder's
-  // sagitta is 0.106^2 / 8 = 1.4e-3 mm = 14 p_max; toolPointsPerElement brings it to p_max / 4.
-  // Measured: 1.07 p_max deep; 13.3 p_max with 2 points per element (the rule before).
+  // The fibre of dragScene pressed onto the cylinder (radius 1) by its end forces, frictionless,
+  // p_max = 1e-4 mm; 16 elements of 0.25 mm put a node over the cylinder's crest, 15 elements of
+  // 0.267 mm the middle of an element, where the rule's widest spacing is. Two Gauss points per
+  // element are 0.106 mm apart across the node over the crest, where the cylinder's sagitta is
+  // 0.106^2 / 8 = 1.4e-3 mm = 14 p_max; toolPointsPerElement brings it to p_max / 4.
+  // Measured: 1.07 p_max deep (node over the crest) and 1.15 (middle of an element); 13.3 p_max
+  // with 2 points per element (the rule before) with a node over the crest.
   const double pMax = 1e-4, rho = 1, R = 0.1;
-  SceneDef s = dragScene(0.01, 0, 0, 1);
-  s.tools[0].maxPenetration = pMax;
-  World w(s);
-  REQUIRE(solveAll(w));
-  const FibreStore& fs = w.fibres();
-  double deepest = 0;
-  for (Index e = 0; e < fs.elements(); ++e)
-    for (int k = 0; k <= 200; ++k) {  // independent of the contact elements: 200 cuts per element
-      const Section sec = sectionAt(fs, fs.q, {e, -1 + k / 100.0});
-      const Vec3 radial(sec.x0.x(), 0, sec.x0.z());  // from the axis (y) to the centreline
-      const Vec3 n = radial.normalized();
-      const double halfWidth = R * std::hypot(sec.g1.dot(n), sec.g2.dot(n));
-      deepest = std::max(deepest, rho + halfWidth - radial.norm());
-    }
-  CAPTURE(deepest);
-  CHECK(deepest > 0);                  // the fibre does bear on the cylinder
-  CHECK(deepest <= 1.25 * pMax);       // p_max at the points, the sagitta p_max / 4 between them
+  for (const int elements : {16, 15}) {
+    CAPTURE(elements);
+    SceneDef s = dragScene(0.01, 0, 0, 1);
+    s.fibres[0].elements = elements;
+    s.tools[0].maxPenetration = pMax;
+    World w(s);
+    REQUIRE(solveAll(w));
+    const FibreStore& fs = w.fibres();
+    double deepest = 0;
+    for (Index e = 0; e < fs.elements(); ++e)
+      for (int k = 0; k <= 200; ++k) {  // independent of the contact elements: 200 cuts each
+        const Section sec = sectionAt(fs, fs.q, {e, -1 + k / 100.0});
+        const Vec3 radial(sec.x0.x(), 0, sec.x0.z());  // from the axis (y) to the centreline
+        const Vec3 n = radial.normalized();
+        const double halfWidth = R * std::hypot(sec.g1.dot(n), sec.g2.dot(n));
+        deepest = std::max(deepest, rho + halfWidth - radial.norm());
+      }
+    MESSAGE("elements " << elements << ": deepest overlap " << deepest / pMax << " p_max");
+    CHECK(deepest > 0);             // the fibre does bear on the cylinder
+    CHECK(deepest <= 1.25 * pMax);  // p_max at the points, the sagitta p_max / 4 between them
+  }
+}
+
+TEST_CASE("a cylinder with the fibres inside takes the element's own points") {
+  // A chord between two points on a concave wall moves away from it: no sagitta to sample.
+  ToolStore tools;
+  tools.kind = {ToolKind::Cylinder, ToolKind::Cylinder, ToolKind::Plane};
+  tools.radius = {0.5, 0.5, 0};
+  tools.inside = {0, 1, 0};
+  CHECK(toolCurvatureRadius(tools, 0) == 0.5);
+  CHECK(std::isinf(toolCurvatureRadius(tools, 1)));
+  CHECK(std::isinf(toolCurvatureRadius(tools, 2)));
+  CHECK(toolPointsPerElement(0.25, toolCurvatureRadius(tools, 1), 1e-4, 2) == 2);
+  CHECK(toolPointsPerElement(0.25, toolCurvatureRadius(tools, 0), 1e-4, 2) > 2);
+  // the bound the count is chosen by
+  // 2 points: the widest spacing is between them, h / sqrt(3) (across the node 0.42 h)
+  CHECK(toolSagittaBound(0.25, 1.0, 2) == doctest::Approx(std::pow(0.25 / std::sqrt(3.0), 2) / 8));
 }
