@@ -45,7 +45,6 @@ inline void gaussLegendreAny(int n, double* z, double* w) {
         const double p2 = ((2 * j - 1) * x * p1 - (j - 1) * p0) / j;
         p0 = p1, p1 = p2;
       }
-      if (n == 1) p0 = 1, p1 = x;
       dp = n * (x * p1 - p0) / (x * x - 1);  // P_n' from P_n and P_{n-1}
       const double dx = p1 / dp;
       x -= dx;

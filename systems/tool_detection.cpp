@@ -11,23 +11,24 @@
 #include <numbers>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace fibra {
 namespace {
 
 // A contact element for the particle (element, z, xi): its normal is the surface normal at the
 // closest point, its tool point the surface point under it. A lateral particle (length > 0) has
-// weight 1 here (addLateral sets its Gauss weight); an end-face particle (length 0) |t . N|, t
-// the unit tangent: the face bears fully on
-// a tool it faces and not at all on one the fibre lies along, where its rim's lowest point would
-// otherwise add a point force to the line contact the lateral particles already carry.
+// the penalty weight `lateral`; an end-face particle (length 0) |t . N|, t the unit tangent: the
+// face bears fully on a tool it faces and not at all on one the fibre lies along, where its
+// rim's lowest point would otherwise add a point force to the line contact the lateral
+// particles already carry.
 void addParticle(const FibreStore& fs, const ToolStore& tools, Index tool, Index e, double z,
-                 double length, const Section& sec, const Eigen::Vector2d& xi,
+                 double length, double lateral, const Section& sec, const Eigen::Vector2d& xi,
                  const RigidMotion& m, ToolContactStore& c) {
   const Index f = fs.elementFibre[e];
   const Vec3 x = sec.x0 + xi(0) * sec.g1 + xi(1) * sec.g2;
   const SurfacePoint sp = closestSurfacePoint(tools, tool, m, x);
-  c.weight.push_back(length > 0 ? 1.0 : std::abs(sec.dx0ds.normalized().dot(sp.normal)));
+  c.weight.push_back(length > 0 ? lateral : std::abs(sec.dx0ds.normalized().dot(sp.normal)));
   const RigidMotion inverse{m.R.transpose(), m.centre, -m.R.transpose() * m.shift};
   c.tool.push_back(tool);
   c.zone.push_back(tool * fs.fibres() + f);
@@ -70,9 +71,8 @@ void addLateral(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
   const auto& [sec, centre] = *near;
   const Index f = fs.elementFibre[e];
   const double R = fs.radius[f], length = 0.5 * w * elementLength(fs, f) * sec.dx0ds.norm();
-  addParticle(fs, tools, tool, e, z, length, sec, outlinePoint(sec.g1, sec.g2, R, -centre.normal),
-              m, c);
-  c.weight.back() = 0.5 * w * fs.order[f];
+  addParticle(fs, tools, tool, e, z, length, 0.5 * w * fs.order[f], sec,
+              outlinePoint(sec.g1, sec.g2, R, -centre.normal), m, c);
 }
 
 // The flat end face of a fibre at (element, z = +-1): its centre and kEndRim points of its rim
@@ -84,11 +84,29 @@ void addEndFace(const FibreStore& fs, const ToolStore& tools, Index tool, Index 
   if (!near) return;
   const Section& sec = near->first;
   const double R = fs.radius[fs.elementFibre[e]];
-  addParticle(fs, tools, tool, e, z, 0.0, sec, Eigen::Vector2d::Zero(), m, c);
+  addParticle(fs, tools, tool, e, z, 0.0, 0.0, sec, Eigen::Vector2d::Zero(), m, c);
   for (int k = 0; k < kEndRim; ++k) {
     const double phi = 2 * std::numbers::pi * k / kEndRim;
-    addParticle(fs, tools, tool, e, z, 0.0, sec, R * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
+    addParticle(fs, tools, tool, e, z, 0.0, 0.0, sec,
+                R * Eigen::Vector2d(std::cos(phi), std::sin(phi)), m, c);
   }
+}
+
+// The Gauss rule of an element of length h and order `order` against one tool (the points
+// toolPointsPerElement gives), found in `rules` or added to it.
+struct PointRule {
+  double h;
+  int order, n;
+  double z[kMaxToolPoints], w[kMaxToolPoints];
+};
+const PointRule& pointRule(std::vector<PointRule>& rules, double h, int order, double rho,
+                           double pMax) {
+  for (const PointRule& r : rules)
+    if (r.h == h && r.order == order) return r;
+  PointRule& r = rules.emplace_back();
+  r.h = h, r.order = order, r.n = toolPointsPerElement(h, rho, pMax, order);
+  gaussLegendre(r.n, r.z, r.w);
+  return r;
 }
 
 }  // namespace
@@ -120,13 +138,13 @@ void detectToolContacts(const FibreStore& fs, const ToolStore& tools, const Cont
   clearColumns(c);
   for (Index t = 0; t < tools.size(); ++t) {
     const RigidMotion m = toolMotion(tools, t, input.time);
+    std::vector<PointRule> rules;  // one per distinct (element length, order): fibres share them
     for (Index f = 0; f < fs.fibres(); ++f) {
-      const int n = toolPointsPerElement(elementLength(fs, f), toolCurvatureRadius(tools, t),
-                                         tools.pMax[t], fs.order[f]);
-      double z[kMaxToolPoints], w[kMaxToolPoints];
-      gaussLegendre(n, z, w);
+      const PointRule& r = pointRule(rules, elementLength(fs, f), fs.order[f],
+                                     toolCurvatureRadius(tools, t), tools.pMax[t]);
       for (Index e = fs.firstElement[f]; e < fs.firstElement[f] + fs.elementCount[f]; ++e)
-        for (int k = 0; k < n; ++k) addLateral(fs, tools, t, e, z[k], w[k], m, params.toolProximity, c);
+        for (int k = 0; k < r.n; ++k)
+          addLateral(fs, tools, t, e, r.z[k], r.w[k], m, params.toolProximity, c);
     }
     for (Index f = 0; f < fs.fibres(); ++f) {
       const Index first = fs.firstElement[f], last = first + fs.elementCount[f] - 1;
