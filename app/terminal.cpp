@@ -2,6 +2,7 @@
 
 #include "engine/contact_setup.h"
 #include "engine/free_spin.h"
+#include "engine/torqued_strings.h"
 #include "systems/interpolation.h"
 #include "systems/linear_solver.h"
 #include "systems/tool_detection.h"
@@ -153,21 +154,47 @@ std::string contactLines(const World& world) {
   return out;
 }
 
+// "N fibre(s) (a, b, c, d, ...)": the count and the first four names of fibres (indices).
+std::string fibreList(const World& world, const std::vector<Index>& fibres) {
+  std::string list;
+  for (size_t i = 0; i < fibres.size() && i < 4; ++i)
+    list += (i ? ", " : "") + world.scene().fibres[fibres[i]].name;
+  if (fibres.size() > 4) list += ", ...";
+  return format("%zu fibre%s (%s)", fibres.size(), fibres.size() == 1 ? "" : "s", list.c_str());
+}
+
 // The fibres whose spin only friction holds (engine/free_spin.h), as a note.
 std::string freeSpinLine(const World& world) {
-  const SceneDef& s = world.scene();
-  std::vector<std::string> names;
-  for (Index i : freeSpinFibres(world)) names.push_back(s.fibres[i].name);
-  if (names.empty()) return "";
-  std::string list;
-  for (size_t i = 0; i < names.size() && i < 4; ++i) list += (i ? ", " : "") + names[i];
-  if (names.size() > 4) list += ", ...";
-  const bool one = names.size() == 1;
-  return format("  note: %zu fibre%s (%s) can spin freely: only friction holds %s spin about %s "
-                "axis, none once all %s contacts slip; if Newton stagnates, hold at an end a "
-                "director component the spin turns (docs/METHOD.md \"Free spin\")\n",
-                names.size(), one ? "" : "s", list.c_str(), one ? "its" : "their",
-                one ? "its" : "their", one ? "its" : "their");
+  const std::vector<Index> fibres = freeSpinFibres(world);
+  if (fibres.empty()) return "";
+  const char* its = fibres.size() == 1 ? "its" : "their";
+  return format("  note: %s can spin freely: only friction holds %s spin about %s axis, none "
+                "once all %s contacts slip; if Newton stagnates, hold at an end a director "
+                "component the spin turns (docs/METHOD.md \"Free spin\")\n",
+                fibreList(world, fibres).c_str(), its, its, its);
+}
+
+// The strings whose sections are twisted (engine/torqued_strings.h), as a note: the largest
+// torque and the shortest element.
+std::string torquedStringLine(const World& world) {
+  const std::vector<TorquedString> strings = torquedStrings(world);
+  if (strings.empty()) return "";
+  std::vector<Index> fibres;
+  double torque = 0, h = 1e300;
+  for (const TorquedString& t : strings) {
+    fibres.push_back(t.fibre);
+    torque = std::max(torque, t.torque);
+    h = std::min(h, t.elementLength);
+  }
+  const bool one = strings.size() == 1;
+  return format("  note: %s without bending stiffness %s twisted about %s axis, up to %.3g N mm "
+                "of torque: a string under torque has no straight equilibrium (Greenhill's limit "
+                "2 sqrt(EI T) is 0), and once the torque passes about T h / pi (T the tension, "
+                "h = %.3g mm the element length) it zigzags from node to node, where contact "
+                "misses the kinks; a smaller torsion_factor lowers the torque (docs/METHOD.md "
+                "\"Strings under torque\")\n",
+                fibreList(world, fibres).c_str(), one ? "is" : "are", one ? "its" : "their",
+                torque, h);
 }
 
 // The scene's linear solver settings (a WorldDef may override the strategy: engine/world.h).
@@ -204,6 +231,7 @@ std::string describeProblem(const World& world, const std::string& scene, int th
                 s.steps.empty() ? 0.0 : s.steps.back().endTime);
   out += contactLines(world);
   out += freeSpinLine(world);
+  out += torquedStringLine(world);
   out += solverLine(s);
   if (threads >= 0)
     out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());
