@@ -175,26 +175,26 @@ std::string freeSpinLine(const World& world) {
 }
 
 // The strings whose sections are twisted (engine/torqued_strings.h), as a note: the largest
-// torque and the shortest element.
+// torque, and the smallest radius, which sets the torque a straight string holds.
 std::string torquedStringLine(const World& world) {
   const std::vector<TorquedString> strings = torquedStrings(world);
   if (strings.empty()) return "";
   std::vector<Index> fibres;
-  double torque = 0, h = 1e300;
+  double torque = 0, radius = 1e300;
   for (const TorquedString& t : strings) {
     fibres.push_back(t.fibre);
     torque = std::max(torque, t.torque);
-    h = std::min(h, t.elementLength);
+    radius = std::min(radius, t.radius);
   }
   const bool one = strings.size() == 1;
   return format("  note: %s without bending stiffness %s twisted about %s axis, up to %.3g N mm "
-                "of torque: a string under torque has no straight equilibrium (Greenhill's limit "
-                "2 sqrt(EI T) is 0), and once the torque passes about T h / pi (T the tension, "
-                "h = %.3g mm the element length) it zigzags from node to node, where contact "
-                "misses the kinks; a smaller torsion_factor lowers the torque (docs/METHOD.md "
-                "\"Strings under torque\")\n",
+                "of torque: a string holds its straight state only up to about T R (Greenhill's "
+                "limit with the tension's own bending stiffness T R^2 / 4; T the tension, R = "
+                "%.3g mm), beyond which it zigzags from node to node and contact misses the "
+                "kinks; a smaller "
+                "torsion_factor lowers the torque (docs/METHOD.md \"Strings under torque\")\n",
                 fibreList(world, fibres).c_str(), one ? "is" : "are", one ? "its" : "their",
-                torque, h);
+                torque, radius);
 }
 
 // The scene's linear solver settings (a WorldDef may override the strategy: engine/world.h).

@@ -3,15 +3,17 @@
 
 Greenhill's criterion (Love, "A treatise on the mathematical theory of elasticity", §272): a rod of
 bending stiffness B under tension T and an axial torque M stays straight while M < 2 sqrt(B T)
-(long rod; finite length raises the limit a little). With bending_factor 0 that limit is 0 and the
-elements buckle at the mesh's scale (docs/METHOD.md "Strings under torque").
+(long rod; finite length raises the limit a little). With bending_factor 0 only the tension's
+geometric stiffness T R^2 / 4 is left, the limit is T R, and beyond it the string zigzags from
+node to node (docs/METHOD.md "Strings under torque").
 
 For every combination of the given bending factors, torsion factors and element counts, the script
 writes the scene of tests/test_twisted_string.cpp (the glass fibre of samples/yarn_procedure.json:
 R = 0.01 mm, E = 73 000 MPa, nu = 0.3, L = 0.5 mm, T = 0.023 N, the end turned by --turn rad, a
-transverse line load --imperfection N/mm along x), runs `fibra run`, and prints the torque
-M = torsion_factor G J phi / L, M over Greenhill's 2 sqrt(B T), the largest deflection out of the
-load's plane (|y|) and the largest kink between two elements at a shared end.
+transverse line load --imperfection N/mm along x; --tension and --radius change T and R), runs
+`fibra run`, and prints the torque M = torsion_factor G J phi / L, M over Greenhill's
+2 sqrt(B T), the largest deflection out of the load's plane (|y|) and the largest kink between
+two elements at a shared end (for a run that fails, of its last converged state).
 
     python3 bench/twisted_string.py --fibra build/fibra --bending 0.01,0.03,0.07 --elements 16,32
 """
@@ -27,12 +29,12 @@ import tempfile
 E, NU, R, L, T = 73000.0, 0.3, 0.01, 0.5, 0.023  # MPa, -, mm, mm, N
 
 
-def scene(bending, torsion, elements, turn, imperfection):
+def scene(bending, torsion, elements, turn, imperfection, tension, radius):
     return {
         "units": "mm-N-MPa",
         "materials": [{"name": "glass", "young_modulus": E, "poisson_ratio": NU,
                        "bending_factor": bending, "torsion_factor": torsion}],
-        "fibres": [{"name": "s", "material": "glass", "radius": R, "elements": elements,
+        "fibres": [{"name": "s", "material": "glass", "radius": radius, "elements": elements,
                     "order": 2, "geometry": {"type": "line", "points": [[0, 0, 0], [0, 0, L]],
                                              "director": [1, 0, 0]}}],
         "tables": {"pull": [[0, 0], [1, 1], [2, 1]], "turn": [[0, 0], [1, 0], [2, turn]]},
@@ -40,7 +42,7 @@ def scene(bending, torsion, elements, turn, imperfection):
             {"type": "fix", "group": "s.start", "dofs": ["x", "y", "z", "g1", "g2"]},
             {"type": "fix", "group": "s.end", "dofs": ["x", "y", "g1", "g2"],
              "rotation": {"axis": [0, 0, 1], "centre": [0, 0, 0], "angle": "turn"}}],
-        "loads": [{"type": "force", "group": "s.end", "vector": [0, 0, T], "table": "pull"},
+        "loads": [{"type": "force", "group": "s.end", "vector": [0, 0, tension], "table": "pull"},
                   {"type": "line_force", "group": "s.all", "vector": [imperfection, 0, 0],
                    "table": "pull"}],
         "stabilisation": {"stiffness": 1e-3},
@@ -67,9 +69,14 @@ def shape(state):
 
 def numbers(text, kind, name):
     try:
-        return [kind(v) for v in text.split(",")]
+        values = [kind(v) for v in text.split(",")]
     except ValueError:
-        sys.exit(f"twisted_string.py: --{name}: expected numbers separated by commas, got '{text}'")
+        what = "whole numbers" if kind is int else "numbers"
+        sys.exit(f"twisted_string.py: --{name}: expected {what} separated by commas, got '{text}'")
+    if any(not math.isfinite(v) or v < 0 or (kind is int and v < 1) for v in values):
+        sys.exit(f"twisted_string.py: --{name}: expected finite values >= 0 (elements >= 1), "
+                 f"got '{text}'")
+    return values
 
 
 def main():
@@ -80,10 +87,17 @@ def main():
     p.add_argument("--elements", default="16", help="elements per fibre, comma-separated")
     p.add_argument("--turn", type=float, default=math.pi / 2, help="end turn, rad")
     p.add_argument("--imperfection", type=float, default=1e-4, help="line load, N/mm")
+    p.add_argument("--tension", type=float, default=T, help="end force along the fibre, N")
+    p.add_argument("--radius", type=float, default=R, help="fibre radius, mm")
     a = p.parse_args()
+    for name in ("turn", "imperfection", "tension", "radius"):
+        value = getattr(a, name)
+        if not math.isfinite(value) or (name in ("tension", "radius") and value <= 0):
+            sys.exit(f"twisted_string.py: --{name}: expected a finite value"
+                     f"{' > 0' if name in ('tension', 'radius') else ''}, got {value}")
     if not os.access(a.fibra, os.X_OK):
         sys.exit(f"twisted_string.py: --fibra: {a.fibra} is not an executable (build fibra first)")
-    G, J, I = E / (2 * (1 + NU)), math.pi * R ** 4 / 2, math.pi * R ** 4 / 4
+    G, J, I = E / (2 * (1 + NU)), math.pi * a.radius ** 4 / 2, math.pi * a.radius ** 4 / 4
     bendings = numbers(a.bending, float, "bending")
     torsions = numbers(a.torsion, float, "torsion")
     counts = numbers(a.elements, int, "elements")
@@ -95,14 +109,19 @@ def main():
                 for n in counts:
                     path = os.path.join(tmp, "s.json")
                     with open(path, "w") as f:
-                        json.dump(scene(bf, tf, n, a.turn, a.imperfection), f)
+                        json.dump(scene(bf, tf, n, a.turn, a.imperfection, a.tension, a.radius), f)
                     out = os.path.join(tmp, "out")
                     run = subprocess.run([a.fibra, "run", path, "--out", out, "--quiet",
                                           "--threads", "1"], capture_output=True, text=True)
                     solved = "solved" in run.stdout + run.stderr
-                    y, kink = shape(os.path.join(out, "final_state.csv"))
+                    state = os.path.join(out, "final_state.csv")
+                    if not os.path.exists(state):
+                        sys.exit(f"twisted_string.py: fibra wrote no state for bending {bf:g}, "
+                                 f"torsion {tf:g}, {n} elements (exit {run.returncode}): "
+                                 f"{(run.stderr or run.stdout).strip()}")
+                    y, kink = shape(state)
                     M = tf * G * J * a.turn / L
-                    ratio = M / (2 * math.sqrt(bf * E * I * T)) if bf > 0 else math.inf
+                    ratio = M / (2 * math.sqrt(bf * E * I * a.tension)) if bf > 0 else math.inf
                     print(f"{bf:g} {tf:g} {n} | {M:.3g} | {ratio:.2f} | "
                           f"{'yes' if solved else 'no'} | {y:.2e} | {kink:.2f}", flush=True)
 

@@ -1,5 +1,7 @@
 #include "engine/torqued_strings.h"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -7,10 +9,73 @@
 namespace fibra {
 namespace {
 
-// Unit vector from fibre f's first reference node to its last.
-Vec3 chordOf(const FibreStore& fs, Index f) {
-  const Index first = fs.firstNode[f], last = first + fs.nodeCount[f] - 1;
-  return (x0Of(fs.qRef, last) - x0Of(fs.qRef, first)).normalized();
+// Unit tangent of the reference centreline at node n, from its neighbours on the fibre.
+Vec3 tangentAt(const FibreStore& fs, Index n) {
+  const Index f = fs.nodeFibre[n], first = fs.firstNode[f], last = first + fs.nodeCount[f] - 1;
+  return (x0Of(fs.qRef, std::min(n + 1, last)) - x0Of(fs.qRef, std::max(n - 1, first))).normalized();
+}
+
+// Node n's held DOF c (3..8) is a director component that the spin about t turns.
+bool grips(const FibreStore& fs, Index n, Index c) {
+  if (c < 3) return false;
+  const Vec3 g = c < 6 ? Vec3(g1Of(fs.qRef, n)) : Vec3(g2Of(fs.qRef, n));
+  return std::abs(tangentAt(fs, n).cross(g)(c % 3)) > 0.1 * g.norm();
+}
+
+// A gripped section: the node and the motion that holds it (nullptr: none rotates it).
+struct Grip {
+  Index node;
+  const PrescribedMotion* motion;
+};
+
+// Per fibre, its gripped sections (sorted by node, so by arc length).
+std::vector<std::vector<Grip>> gripsByFibre(const World& world) {
+  const FibreStore& f = world.fibres();
+  const ConstraintStore& c = world.constraints();
+  std::vector<std::vector<Grip>> out(f.fibres());
+  for (size_t k = 0; k < c.dof.size(); ++k) {
+    const Index node = c.dof[k] / kNodeDofs;
+    if (!grips(f, node, c.dof[k] % kNodeDofs)) continue;
+    std::vector<Grip>& g = out[f.nodeFibre[node]];
+    const PrescribedMotion* m = c.motion[c.owner[k]].rotates ? &c.motion[c.owner[k]] : nullptr;
+    if (!g.empty() && g.back().node == node) {
+      if (m) g.back().motion = m;
+    } else {
+      g.push_back({node, m});
+    }
+  }
+  return out;
+}
+
+// torsion_factor G J of fibre f, N mm^2.
+double torsionStiffness(const World& world, Index f) {
+  const MaterialStore& m = world.materials();
+  const FibreStore& fs = world.fibres();
+  const Index mat = fs.material[f];
+  const double G = m.youngModulus[mat] / (2 * (1 + m.poissonRatio[mat]));
+  return m.torsionFactor[mat] * G * std::numbers::pi * std::pow(fs.radius[f], 4) / 2;
+}
+
+// The turn of a gripped section about its tangent at time t, rad.
+double turn(const FibreStore& fs, const Grip& g, double t) {
+  if (!g.motion) return 0;
+  return tableValue(g.motion->angle, t) * g.motion->axis.normalized().dot(tangentAt(fs, g.node));
+}
+
+// The largest torque between neighbouring gripped sections of one fibre, N mm.
+double sectionTorque(const World& world, Index f, const std::vector<Grip>& grips) {
+  const FibreStore& fs = world.fibres();
+  std::vector<double> times;
+  for (const Grip& g : grips)
+    if (g.motion) times.insert(times.end(), g.motion->angle.t.begin(), g.motion->angle.t.end());
+  double torque = 0;
+  for (double t : times)
+    for (size_t k = 1; k < grips.size(); ++k) {
+      const double ds = fs.nodeS[grips[k].node] - fs.nodeS[grips[k - 1].node];
+      const double dphi = turn(fs, grips[k], t) - turn(fs, grips[k - 1], t);
+      torque = std::max(torque, torsionStiffness(world, f) * std::abs(dphi) / ds);
+    }
+  return torque;
 }
 
 double largest(const Table& table) {
@@ -19,43 +84,10 @@ double largest(const Table& table) {
   return m;
 }
 
-// |u . t| when u has a component about the fibre's axis t (|u . t| > 0.1 |u|), else 0.
-double aboutAxis(const Vec3& u, const Vec3& t) {
-  const double c = std::abs(u.dot(t));
-  return c > 0.1 * u.norm() ? c : 0;
-}
-
-// torsion_factor G J / L of fibre f, N mm per rad.
-double torsionStiffness(const World& world, Index f) {
-  const MaterialStore& m = world.materials();
-  const FibreStore& fs = world.fibres();
-  const Index mat = fs.material[f];
-  const double G = m.youngModulus[mat] / (2 * (1 + m.poissonRatio[mat]));
-  const double J = std::numbers::pi * std::pow(fs.radius[f], 4) / 2;
-  return m.torsionFactor[mat] * G * J / fs.length[f];
-}
-
-bool isString(const World& world, Index f) {
-  const MaterialStore& m = world.materials();
-  const Index mat = world.fibres().material[f];
-  return m.bendingFactor[mat] == 0 && m.torsionFactor[mat] > 0;
-}
-
-// Per fibre, the largest torque that the held, turned sections build up.
-void turnedSections(const World& world, std::vector<double>& torque) {
-  const FibreStore& f = world.fibres();
-  const ConstraintStore& c = world.constraints();
-  for (size_t k = 0; k < c.dof.size(); ++k) {
-    const PrescribedMotion& m = c.motion[c.owner[k]];
-    if (c.dof[k] % kNodeDofs < 3 || !m.rotates) continue;
-    const Index fibre = f.nodeFibre[c.dof[k] / kNodeDofs];
-    const double phi = largest(m.angle) * aboutAxis(m.axis.normalized(), chordOf(f, fibre));
-    torque[fibre] = std::max(torque[fibre], torsionStiffness(world, fibre) * phi);
-  }
-}
-
-// Per fibre, the largest axial part of a moment load on one of its nodes.
-void momentLoads(const World& world, std::vector<double>& torque) {
+// Per fibre, the largest axial moment load on a node that does not grip, of a fibre gripped
+// elsewhere (the grip reacts it), N mm.
+void momentLoads(const World& world, const std::vector<std::vector<Grip>>& grips,
+                 std::vector<double>& torque) {
   const FibreStore& f = world.fibres();
   const GroupStore& groups = world.groups();
   for (const LoadDef& load : world.scene().loads) {
@@ -64,24 +96,33 @@ void momentLoads(const World& world, std::vector<double>& torque) {
     if (g == groups.name.end()) continue;  // the scene loader has refused unknown groups
     const Index gi = Index(g - groups.name.begin());
     for (Index i = groups.first[gi]; i < groups.first[gi] + groups.count[gi]; ++i) {
-      const Index fibre = f.nodeFibre[groups.members[i]];
-      const double M = largest(load.table) * aboutAxis(load.vector, chordOf(f, fibre));
-      torque[fibre] = std::max(torque[fibre], M);
+      const Index node = groups.members[i], fibre = f.nodeFibre[node];
+      const std::vector<Grip>& held = grips[fibre];
+      const bool gripped = std::any_of(held.begin(), held.end(), [&](const Grip& h) { return h.node == node; });
+      if (held.empty() || gripped) continue;
+      const double M = std::abs(load.vector.dot(tangentAt(f, node))) * largest(load.table);
+      if (M > 0.1 * load.vector.norm() * largest(load.table)) torque[fibre] = std::max(torque[fibre], M);
     }
   }
+}
+
+bool isString(const World& world, Index f) {
+  const MaterialStore& m = world.materials();
+  const Index mat = world.fibres().material[f];
+  return m.bendingFactor[mat] == 0 && m.torsionFactor[mat] > 0;
 }
 
 }  // namespace
 
 std::vector<TorquedString> torquedStrings(const World& world) {
   const FibreStore& f = world.fibres();
+  const std::vector<std::vector<Grip>> grips = gripsByFibre(world);
   std::vector<double> torque(f.fibres(), 0.0);
-  turnedSections(world, torque);
-  momentLoads(world, torque);
+  for (Index i = 0; i < f.fibres(); ++i) torque[i] = sectionTorque(world, i, grips[i]);
+  momentLoads(world, grips, torque);
   std::vector<TorquedString> out;
   for (Index i = 0; i < f.fibres(); ++i)
-    if (torque[i] > 0 && isString(world, i))
-      out.push_back({i, torque[i], f.length[i] / double(f.elementCount[i])});
+    if (torque[i] > 0 && isString(world, i)) out.push_back({i, torque[i], f.radius[i]});
   return out;
 }
 
