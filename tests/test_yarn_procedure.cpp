@@ -14,6 +14,7 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <thread>
 
 using namespace fibra;
@@ -41,11 +42,19 @@ struct ProcedureRun {
   std::vector<CrushPoint> crush;
 };
 
+// The index of the step named "crush", -1 if none.
+int crushStep(const Json& j) {
+  for (size_t s = 0; s < j["steps"].size(); ++s)
+    if (j["steps"][s]["name"] == "crush") return int(s);
+  return -1;
+}
+
 // The gap between the cylinders at time t: their surfaces' distance at t = 0 less both travels
 // (the crush table ramps from 0 to 1 over the crush step), mm.
 double toolGap(const Json& j, double t) {
   const Json &bottom = j["tools"][0], &top = j["tools"][1];
-  const double start = j["steps"][2]["end_time"], end = j["steps"][3]["end_time"];
+  const int crush = crushStep(j);
+  const double start = j["steps"][crush - 1]["end_time"], end = j["steps"][crush]["end_time"];
   const double ramp = std::clamp((t - start) / (end - start), 0.0, 1.0);
   const double gap0 = double(top["point"][1]) - double(bottom["point"][1]) -
                       double(top["radius"]) - double(bottom["radius"]);
@@ -65,7 +74,7 @@ ProcedureRun runProcedure(const Json& j) {
       break;
     }
     if (r.step == 0) run.qAfterEquilibrium = w.fibres().q;
-    if (r.step == 3) run.crush.push_back({toolGap(j, r.time), w.toolReaction(1).y()});
+    if (r.step == crushStep(j)) run.crush.push_back({toolGap(j, r.time), w.toolReaction(1).y()});
   }
   run.q = w.fibres().q;
   return run;
@@ -86,6 +95,7 @@ double largestOverlap(const FibreStore& fs, const Eigen::VectorXd& q) {
 
 TEST_CASE("twisted yarn procedure: 19 fibres converge, the same seed gives the same bits, the crush force rises") {
   const Json j = ciScene();
+  REQUIRE(crushStep(j) > 0);
   // Two runs side by side, one thread each.
   ProcedureRun a, b;
   std::thread second([&] { b = runProcedure(j); });
@@ -105,12 +115,16 @@ TEST_CASE("twisted yarn procedure: 19 fibres converge, the same seed gives the s
   CHECK(overlap <= s.contact.maxPenetration);
 
   // The crushing force rises while the gap exceeds 80% of the yarn's initial diameter D (the
-  // hexagonal section of 19 fibres: 5 across, 4 gaps between them), and the tools do bite.
+  // hexagonal section of 3 r (r + 1) + 1 fibres in r rings: 2 r + 1 across, 2 r gaps between
+  // them), and the tools do bite.
   // With the crush damped at 1e-2 instead of 3e-3 the force fell at 0.837-0.859 D: the viscous
   // force held the fibres back and the tool force came out high (docs/SCENE.md "Yarn: the
   // procedure").
   const Json& y = j["generators"][0];
-  const double diameter = 10 * double(y["fibre_radius"]) + 4 * double(y["gap"]);  // mm
+  const int fibres = y["fibres"], rings = int(std::lround((std::sqrt(12.0 * fibres - 3) - 3) / 6));
+  REQUIRE(3 * rings * (rings + 1) + 1 == fibres);
+  const double diameter = (2 * rings + 1) * 2 * double(y["fibre_radius"]) +
+                          2 * rings * double(y["gap"]);  // mm
   for (const CrushPoint& p : a.crush) MESSAGE("gap " << p.gap << " mm, force " << p.force << " N");
   int rising = 0;
   for (size_t k = 1; k < a.crush.size() && a.crush[k].gap > 0.8 * diameter; ++k) {
