@@ -174,27 +174,27 @@ std::string freeSpinLine(const World& world) {
                 fibreList(world, fibres).c_str(), its, its, its);
 }
 
-// The strings whose sections are twisted (engine/torqued_strings.h), as a note: the largest
-// torque, and the smallest radius, which sets the torque a straight string holds.
+// The strings whose sections are twisted (engine/torqued_strings.h), as a note: the fibre whose
+// torque is the largest against its radius (the straight string's limit is about T R), its
+// torque and radius.
 std::string torquedStringLine(const World& world) {
   const std::vector<TorquedString> strings = torquedStrings(world);
   if (strings.empty()) return "";
   std::vector<Index> fibres;
-  double torque = 0, radius = 1e300;
+  const TorquedString* worst = &strings.front();
   for (const TorquedString& t : strings) {
     fibres.push_back(t.fibre);
-    torque = std::max(torque, t.torque);
-    radius = std::min(radius, t.radius);
+    if (t.torque / t.radius > worst->torque / worst->radius) worst = &t;
   }
   const bool one = strings.size() == 1;
   return format("  note: %s without bending stiffness %s twisted about %s axis, up to %.3g N mm "
-                "of torque: a string holds its straight state only up to about T R (Greenhill's "
-                "limit with the tension's own bending stiffness T R^2 / 4; T the tension, R = "
-                "%.3g mm), beyond which it zigzags from node to node and contact misses the "
-                "kinks; a smaller "
-                "torsion_factor lowers the torque (docs/METHOD.md \"Strings under torque\")\n",
+                "of torque (%s, R = %.3g mm): a string holds its straight state only up to about "
+                "T R (Greenhill's limit with the tension's own bending stiffness T R^2 / 4; T the "
+                "tension), beyond which it zigzags from node to node and contact misses the "
+                "kinks; a smaller torsion_factor lowers the torque (docs/METHOD.md \"Strings "
+                "under torque\")\n",
                 fibreList(world, fibres).c_str(), one ? "is" : "are", one ? "its" : "their",
-                torque, radius);
+                worst->torque, world.scene().fibres[worst->fibre].name.c_str(), worst->radius);
 }
 
 // The scene's linear solver settings (a WorldDef may override the strategy: engine/world.h).

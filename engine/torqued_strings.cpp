@@ -84,12 +84,13 @@ double largest(const Table& table) {
   return m;
 }
 
-// Per fibre, the largest axial moment load on a node that does not grip, of a fibre gripped
-// elsewhere (the grip reacts it), N mm.
+// Per fibre, the axial moment loads on its nodes that do not grip, summed (signed), of a fibre
+// gripped elsewhere: the grips react the sum, N mm.
 void momentLoads(const World& world, const std::vector<std::vector<Grip>>& grips,
                  std::vector<double>& torque) {
   const FibreStore& f = world.fibres();
   const GroupStore& groups = world.groups();
+  std::vector<double> sum(f.fibres(), 0.0);
   for (const LoadDef& load : world.scene().loads) {
     if (load.kind != LoadKind::Moment) continue;
     const auto g = std::find(groups.name.begin(), groups.name.end(), load.group);
@@ -100,10 +101,11 @@ void momentLoads(const World& world, const std::vector<std::vector<Grip>>& grips
       const std::vector<Grip>& held = grips[fibre];
       const bool gripped = std::any_of(held.begin(), held.end(), [&](const Grip& h) { return h.node == node; });
       if (held.empty() || gripped) continue;
-      const double M = std::abs(load.vector.dot(tangentAt(f, node))) * largest(load.table);
-      if (M > 0.1 * load.vector.norm() * largest(load.table)) torque[fibre] = std::max(torque[fibre], M);
+      const double axial = load.vector.dot(tangentAt(f, node));
+      if (std::abs(axial) > 0.1 * load.vector.norm()) sum[fibre] += axial * largest(load.table);
     }
   }
+  for (Index i = 0; i < f.fibres(); ++i) torque[i] = std::max(torque[i], std::abs(sum[i]));
 }
 
 bool isString(const World& world, Index f) {

@@ -31,8 +31,9 @@ struct TorquedString {
 //    that does not rotate; a the rotation axis, unit); between neighbouring gripped sections s1 <
 //    s2 along the fibre, torsion_factor G J |phi(s2) - phi(s1)| / (s2 - s1) at the tables' times
 //    (G = E / (2 (1 + nu)), J = pi R^4 / 2): the elastic torque of a straight fibre twisted;
-//  - a moment load M on a node that does not grip, of a fibre gripped elsewhere: |M . t| times
-//    the table's largest |value|.
+//  - moment loads M on nodes that do not grip, of a fibre gripped elsewhere: |sum of M . t times
+//    the table's largest |value||, what the grips react.
+// The larger of the two (not their sum).
 // A fibre gripped at one section only, or turned as a whole, carries no torque from its
 // boundary conditions. fibra check and fibra run print the fibres as a note (app/terminal.cpp).
 std::vector<TorquedString> torquedStrings(const World& world);

@@ -55,9 +55,9 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   // (engine/torqued_strings.h).
   CHECK(countLines(y.output, R"(^  note: 19 fibres \(yarn.f0, yarn.f1, yarn.f2, yarn.f3, \.\.\.\) without )"
                              R"(bending stiffness are twisted about their axis, up to 0.00139 N mm of )"
-                             R"(torque: a string holds its straight state only up to about T R .*R = )"
-                             R"(0.01 mm\), beyond which it zigzags from node to node .*"Strings under )"
-                             R"(torque"\)$)") == 1);
+                             R"(torque \(yarn.f[0-9]+, R = 0.01 mm\): a string holds its straight state only up )"
+                             R"(to about T R .*, beyond which it zigzags from node to node .*"Strings )"
+                             R"(under torque"\)$)") == 1);
   CHECK(countLines(r.output, "without bending stiffness") == 0);
   // The roller sample with a roller 20x thinner and p_max 1e-5 mm: the 32 points of the cap leave
   // a sagitta of (0.25 mm x 0.0966 / 2)^2 / (8 x 0.05 mm) = 3.65e-4 mm = 36.5 p_max, said.

@@ -163,6 +163,11 @@ TEST_CASE("a string (bending_factor 0) turned under tension zigzags, unless its 
   const std::vector<TorquedString> m = noted(moment);
   REQUIRE(m.size() == 1);
   CHECK(m[0].torque == doctest::Approx(1e-4).epsilon(1e-12));
+  Json spread = moment;  // moments on every node: the start's grip reacts the 16 others' sum
+  spread["loads"].back()["group"] = "s.all";
+  const std::vector<TorquedString> all = noted(spread);
+  REQUIRE(all.size() == 1);
+  CHECK(all[0].torque == doctest::Approx(16 * 1e-4).epsilon(1e-12));
   Json reacted = moment;  // the same moment where the end's directors are held: the grip takes it
   reacted["boundary_conditions"][1]["dofs"] = {"x", "y", "g1", "g2"};
   CHECK(noted(reacted).empty());
