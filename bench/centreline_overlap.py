@@ -93,13 +93,19 @@ def half_width(g1, g2, n, radius):
     return radius * math.hypot(dot(g1, n), dot(g2, n))
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+def state_parser(doc, samples):
+    """The arguments both overlap scripts take: a final state, R, p_max, samples per element."""
+    p = argparse.ArgumentParser(description=doc.split("\n\n")[0],
                                 formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("final_state")
     p.add_argument("--radius", type=float, required=True, help="fibre radius R, mm")
     p.add_argument("--pmax", type=float, default=0, help="p_max, mm (for the ratio)")
-    p.add_argument("--samples", type=int, default=16, help="samples per element")
+    p.add_argument("--samples", type=int, default=samples, help="samples per element")
+    return p
+
+
+def main():
+    p = state_parser(__doc__, 16)
     p.add_argument("--min-elements", type=float, default=4,
                    help="self-contact: pairs on one fibre at least this many elements apart")
     p.add_argument("--reach", type=float, default=0, help="pairs within this distance, mm (0: 2.5 R)")

@@ -32,18 +32,22 @@ def angle(u, v):
     return math.degrees(math.acos(max(-1.0, min(1.0, dot / math.hypot(*u) / math.hypot(*v)))))
 
 
+def fibre_kinks(rows):
+    """(angle in degrees, node) at every interior element end of one fibre's node rows."""
+    out = []
+    for e in range(1, (len(rows) - 1) // 2):  # the end shared by elements e - 1 and e: node 2 e
+        left = tangent_end(*rows[2 * e - 2:2 * e + 1])
+        right = tangent_start(*rows[2 * e:2 * e + 3])
+        out.append((angle(left, right), 2 * e))
+    return out
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("final_state")
     a = p.parse_args()
     fibres = load_fibres(a.final_state, ("x", "y", "z"))
-    kinks = []
-    for name, rows in fibres.items():
-        elements = (len(rows) - 1) // 2
-        for e in range(1, elements):  # the end shared by elements e - 1 and e: node 2 e
-            left = tangent_end(*rows[2 * e - 2:2 * e + 1])
-            right = tangent_start(*rows[2 * e:2 * e + 3])
-            kinks.append((angle(left, right), name, 2 * e))
+    kinks = [(k, name, node) for name, rows in fibres.items() for k, node in fibre_kinks(rows)]
     if not kinks:
         print("no interior element ends")
         return

@@ -19,7 +19,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from centreline_overlap import half_width, load_fibres, section  # noqa: E402
+from centreline_overlap import half_width, load_fibres, section, state_parser  # noqa: E402
 
 
 def cylinder(text):
@@ -33,12 +33,7 @@ def cylinder(text):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument("final_state")
-    p.add_argument("--radius", type=float, required=True, help="fibre radius R, mm")
-    p.add_argument("--pmax", type=float, default=0, help="p_max, mm (for the ratio)")
-    p.add_argument("--samples", type=int, default=400, help="samples per element")
+    p = state_parser(__doc__, 400)
     p.add_argument("--cylinder", type=cylinder, action="append", required=True,
                    help="px,py,pz,ax,ay,az,radius at the final state (repeatable)")
     a = p.parse_args()

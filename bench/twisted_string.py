@@ -18,13 +18,16 @@ two elements at a shared end (for a run that fails, of its last converged state)
     python3 bench/twisted_string.py --fibra build/fibra --bending 0.01,0.03,0.07 --elements 16,32
 """
 import argparse
-import csv
 import json
 import math
 import os
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from centreline_overlap import load_fibres  # noqa: E402
+from fibre_kinks import fibre_kinks  # noqa: E402
 
 E, NU, R, L, T = 73000.0, 0.3, 0.01, 0.5, 0.023  # MPa, -, mm, mm, N
 
@@ -52,19 +55,9 @@ def scene(bending, torsion, elements, turn, imperfection, tension, radius):
 
 def shape(state):
     """Largest |y| (mm) and largest kink (deg) of the fibre in a final_state.csv."""
-    with open(state) as f:
-        rows = [[float(r[k]) for k in ("x", "y", "z")] for r in csv.DictReader(f)]
-    out_of_plane = max(abs(p[1]) for p in rows)
-    kink = 0.0
-    for e in range(1, (len(rows) - 1) // 2):
-        a, b, c = rows[2 * e - 2:2 * e + 1]
-        left = [0.5 * p - 2 * q + 1.5 * r for p, q, r in zip(a, b, c)]
-        a, b, c = rows[2 * e:2 * e + 3]
-        right = [-1.5 * p + 2 * q - 0.5 * r for p, q, r in zip(a, b, c)]
-        dot = sum(u * v for u, v in zip(left, right))
-        norm = math.sqrt(sum(u * u for u in left) * sum(v * v for v in right))
-        kink = max(kink, math.degrees(math.acos(max(-1.0, min(1.0, dot / norm)))))
-    return out_of_plane, kink
+    rows = next(iter(load_fibres(state, ("x", "y", "z")).values()))
+    kinks = [k for k, _ in fibre_kinks(rows)]
+    return max(abs(p[1]) for p in rows), max(kinks, default=0.0)
 
 
 def numbers(text, kind, name):

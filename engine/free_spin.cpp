@@ -25,6 +25,12 @@ bool straight(const FibreStore& fs, Index f) {
 
 }  // namespace
 
+bool gripsSpin(const FibreStore& fs, Index n, Index c, const Vec3& t) {
+  if (c < 3) return false;
+  const Vec3 g = c < 6 ? Vec3(g1Of(fs.qRef, n)) : Vec3(g2Of(fs.qRef, n));
+  return std::abs(t.cross(g)(c % 3)) > 0.1 * g.norm();
+}
+
 bool frictionCanAct(const SceneDef& s) {
   bool scaled = false;
   for (const StepDef& st : s.steps) scaled = scaled || st.frictionFactor > 0;
@@ -46,8 +52,7 @@ std::vector<Index> freeSpinFibres(const World& world) {
       position[fibre] = true;
       continue;
     }
-    const Vec3 g = c < 6 ? Vec3(g1Of(f.qRef, node)) : Vec3(g2Of(f.qRef, node));
-    gripped[fibre] = gripped[fibre] || std::abs(chord(f, fibre).cross(g)(c % 3)) > 0.1 * g.norm();
+    gripped[fibre] = gripped[fibre] || gripsSpin(f, node, c, chord(f, fibre));
   }
   for (Index i = 0; i < f.fibres(); ++i)
     if (position[i] && !gripped[i] && straight(f, i)) out.push_back(i);

@@ -14,6 +14,11 @@
 
 namespace fibra {
 
+// Whether component c (3..8: g1x..g2z) of node n's reference director g moves when the section
+// spins about the unit axis t, |e_c . (t x g)| > 0.1 |g|: holding it grips the spin. False for
+// position components (c < 3).
+bool gripsSpin(const FibreStore& fs, Index n, Index c, const Vec3& t);
+
 // Friction that can act in the scene: between fibres (the section's or a pair rule's mu, with
 // two fibres or self-contact) or with a tool, in a step whose friction factor is not 0.
 bool frictionCanAct(const SceneDef& scene);

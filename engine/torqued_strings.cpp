@@ -1,5 +1,7 @@
 #include "engine/torqued_strings.h"
 
+#include "engine/free_spin.h"
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -15,13 +17,6 @@ Vec3 tangentAt(const FibreStore& fs, Index n) {
   return (x0Of(fs.qRef, std::min(n + 1, last)) - x0Of(fs.qRef, std::max(n - 1, first))).normalized();
 }
 
-// Node n's held DOF c (3..8) is a director component that the spin about t turns.
-bool grips(const FibreStore& fs, Index n, Index c) {
-  if (c < 3) return false;
-  const Vec3 g = c < 6 ? Vec3(g1Of(fs.qRef, n)) : Vec3(g2Of(fs.qRef, n));
-  return std::abs(tangentAt(fs, n).cross(g)(c % 3)) > 0.1 * g.norm();
-}
-
 // A gripped section: the node and the motion that holds it (nullptr: none rotates it).
 struct Grip {
   Index node;
@@ -35,7 +30,7 @@ std::vector<std::vector<Grip>> gripsByFibre(const World& world) {
   std::vector<std::vector<Grip>> out(f.fibres());
   for (size_t k = 0; k < c.dof.size(); ++k) {
     const Index node = c.dof[k] / kNodeDofs;
-    if (!grips(f, node, c.dof[k] % kNodeDofs)) continue;
+    if (!gripsSpin(f, node, c.dof[k] % kNodeDofs, tangentAt(f, node))) continue;
     std::vector<Grip>& g = out[f.nodeFibre[node]];
     const PrescribedMotion* m = c.motion[c.owner[k]].rotates ? &c.motion[c.owner[k]] : nullptr;
     if (!g.empty() && g.back().node == node) {
