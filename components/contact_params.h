@@ -84,7 +84,12 @@ struct ContactParams {
   bool newtonFrictionlessOnly = false;  // with newtonNormals: only the parallel elements (eq. 10
                                         // crossing weight 0) of frictionless pairs, once loop B
                                         // diverged (systems/normal_linearisation.h)
-  bool weightedElements = true; // line contacts: weighted Gauss-point elements (else eq. 7)
+  // Line contacts' elements (systems/contact_elements.h): weighted, at the two Gauss points of
+  // each piece between both fibres' element ends (Gauss), or at the pieces' ends and midpoints
+  // (Lobatto: three-point Gauss-Lobatto, Simpson's weights, so every element end of either
+  // fibre carries one), or equally spaced with equal weights (Paper, eq. 7).
+  enum class Placement : std::uint8_t { Gauss, Lobatto, Paper };
+  Placement placement = Placement::Gauss;
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in
                                 // loop B (systems/crossing_follow.h)
   bool facingParticles = false; // frictionless elements act on the outlines' points extremal

@@ -172,8 +172,10 @@ struct OutputDef {
 // the default" (docs/SCENE.md gives the rules, which use the radii and element lengths).
 enum class FrictionTangent { Consistent, Symmetrised };
 // Where a line contact's elements sit (docs/CONTACT.md 1.4): Gauss points between both fibres'
-// element ends, weighted (uniform line force), or equally spaced with equal penalties (eq. 7).
-enum class ElementPlacement { Weighted, Paper };
+// element ends, weighted (uniform line force); those ends and the midpoints between them,
+// weighted by Simpson's rule (Lobatto: also a uniform line force, and every node of either
+// fibre sampled); or equally spaced with equal penalties (eq. 7).
+enum class ElementPlacement { Weighted, Lobatto, Paper };
 // How fibre-fibre normals follow the state: recomputed at every Newton assembly with their
 // derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop), or
 // Loop until loop B diverges in an increment, which then starts again with the normals of its

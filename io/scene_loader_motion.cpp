@@ -189,7 +189,9 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.maxNormalLoops = f.integer("max_normal_loops", c.maxNormalLoops);
   c.elementPlacement = f.choice(
       "element_placement",
-      {{"weighted", ElementPlacement::Weighted}, {"paper", ElementPlacement::Paper}},
+      {{"weighted", ElementPlacement::Weighted},
+       {"lobatto", ElementPlacement::Lobatto},
+       {"paper", ElementPlacement::Paper}},
       c.elementPlacement);
   c.frictionHoldAfter = f.integer("friction_hold_after", c.frictionHoldAfter);
   c.frictionHoldTolerance = f.number("friction_hold_tolerance", c.frictionHoldTolerance);

@@ -171,19 +171,63 @@ double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, d
   return 0.5 * (a + b);
 }
 
+// Lobatto sampling: the missed dip of the gap g(zeta) = |D| - R_I - R_J, D = x_I - x_J, between
+// samples dz apart is at most K dz^2 / 8, K a bound of |g''| on the piece; it is kept within
+// kSagShare p_max (the tools' rule, systems/tool_detection.h) by cutting the piece into m
+// Simpson sub-pieces (samples (b - a) / 2m apart), m <= kMaxSimpsonParts. On a piece both
+// sections lie in one element each, so with x = P.a + P.b z + P.c z^2 and dz/dzeta = 2 d / h:
+//   D'' = 2 c_I (2 d_I / h_I)^2 - 2 c_J (2 d_J / h_J)^2   (constant on the piece),
+//   g'' = n . D'' + |D'_perp|^2 / |D| <= |D''| + max over the piece's ends of |D'_perp|^2 / |D|,
+// |D| taken at least (R_I + R_J) / 2. Bent fibres lying side by side (a yarn's) dip between
+// samples by 1.1 p_max at h / 2 spacing (37 fibres, 8 elements, measured); a shallow crossing's
+// closest point lies between them.
+constexpr double kSagShare = 0.25;
+constexpr int kMaxSimpsonParts = 8;
+
+int simpsonParts(const Intermediate& g, double a, double b, double sag) {
+  const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
+  const FibrePoint pI = locate(g.fs, g.I, g.sI(0.5 * (a + b)));
+  const FibrePoint pJ = locate(g.fs, g.J, g.sJ(0.5 * (a + b)));
+  const CentrelinePolynomial &PI = g.cl.poly[pI.element], &PJ = g.cl.poly[pJ.element];
+  const double zI = 2 * g.dI / hI, zJ = 2 * g.dJ / hJ;  // dz/dzeta on I and J
+  double K = (2 * PI.c * zI * zI - 2 * PJ.c * zJ * zJ).norm();
+  const double floor = 0.5 * (g.fs.radius[g.I] + g.fs.radius[g.J]);
+  double drift = 0;
+  for (const double zeta : {a, b}) {
+    const double z1 = std::clamp(pI.z + (zeta - 0.5 * (a + b)) * zI, -1.0, 1.0);
+    const double z2 = std::clamp(pJ.z + (zeta - 0.5 * (a + b)) * zJ, -1.0, 1.0);
+    const Vec3 D = PI.a + z1 * PI.b + z1 * z1 * PI.c - (PJ.a + z2 * PJ.b + z2 * z2 * PJ.c);
+    const Vec3 dD = (PI.b + 2 * z1 * PI.c) * zI - (PJ.b + 2 * z2 * PJ.c) * zJ;
+    const double d = D.norm();
+    const double along = d > 0 ? dD.dot(D) / d : 0;
+    drift = std::max(drift, (dD.squaredNorm() - along * along) / std::max(d, floor));
+  }
+  K += drift;
+  if (!(sag > 0) || !(K > 0)) return 1;
+  const double m = std::ceil(0.5 * (b - a) * std::sqrt(K / (8 * sag)) * (1 - 1e-12));
+  return int(std::clamp(m, 1.0, double(kMaxSimpsonParts)));
+}
+
 // The contact elements of a zone: visit(zeta, length) in increasing zeta. floor(2 L_int / h_min)
 // (eq. 6) decides between a point contact (< 2: one element at zeta = 1/2 carrying L_int) and a
 // line contact. A line contact is cut where the eq. 8 sections cross the element ends of either
-// fibre (sectionAbscissa, within one element's span of the zone's linear map; a cut within h_min / 10 of arc length of the previous one kept or of the
-// zone's end is dropped, so no sliver piece remains), and each piece [a, b] carries its two
-// Gauss points, each of length (b - a) / 2 |t_int(zeta)|. A piece's sections then lie within one
-// element of I and one of J, and a uniform line pressure p gives both fibres the nodal forces of
-// the consistent line load, int N_a p ds, exactly where the sections move affinely with zeta
-// (two-point Gauss is exact for N_a p, p linear, on quadratic elements).
-// With ContactParams::weightedElements off: the paper's eq. 7, Nc equally spaced elements
-// zeta_k = (k - 1) / (Nc - 1), each of length L_int / Nc (equal weights).
+// fibre (sectionAbscissa, within one element's span of the zone's linear map; a cut within
+// h_min / 10 of arc length of the previous one kept or of the zone's end is dropped, so no
+// sliver piece remains). A piece's sections then lie within one element of I and one of J, and
+// a uniform line pressure p gives both fibres the nodal forces of the consistent line load,
+// int N_a p ds, exactly where the sections move affinely with zeta: the integrand is cubic in
+// zeta and both rules below are exact for cubics. On a piece [a, b] of width w = b - a:
+//   Gauss:   the two Gauss points (a + b) / 2 -+ w / (2 sqrt 3), each of length w / 2 |t_int|;
+//   Lobatto: a, (a + b) / 2 and b with lengths w / 6, 4 w / 6, w / 6 times |t_int| (Simpson),
+//            a cut shared by two pieces being one element carrying both sixths. Every element
+//            end of either fibre inside the zone then carries an element: a kink of the
+//            centreline at a node, where the Gauss points (0.21 h away) see the fibres apart,
+//            is sampled where it is deepest.
+// Paper: eq. 7, Nc equally spaced elements zeta_k = (k - 1) / (Nc - 1), each of length L_int / Nc
+// (equal weights).
 template <class Visit>
-void forEachElementAbscissa(const Intermediate& g, double L, bool weighted, Visit visit) {
+void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams& p, Visit visit) {
+  const ContactParams::Placement placement = p.placement;
   const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
   const double h = std::min(hI, hJ);
   const double count = std::floor(2 * L / h);
@@ -191,7 +235,7 @@ void forEachElementAbscissa(const Intermediate& g, double L, bool weighted, Visi
     visit(0.5, L);
     return;
   }
-  if (!weighted) {
+  if (placement == ContactParams::Placement::Paper) {
     for (int k = 0; k < int(count); ++k) visit(k / (count - 1), L / count);
     return;
   }
@@ -201,15 +245,41 @@ void forEachElementAbscissa(const Intermediate& g, double L, bool weighted, Visi
       cuts.push_back(sectionAbscissa(g, f, double(b.n) * hf, b.peek(), hf / std::abs(d)));
   std::sort(cuts.begin(), cuts.end());
   const double sliver = 0.1 * h / std::max(std::abs(g.dI), std::abs(g.dJ));  // in zeta
-  const double r = 0.5 / std::sqrt(3.0);
-  auto piece = [&](double a, double b) {
-    const double mid = 0.5 * (a + b), w = b - a;
-    for (const double z : {mid - r * w, mid + r * w}) visit(z, 0.5 * w * g.tangent(z).norm());
-  };
-  double a = 0;
+  std::vector<double> ends{0.0};  // the pieces' ends: 0, the kept cuts, 1
   for (const double b : cuts)
-    if (b - a >= sliver && 1 - b >= sliver) piece(a, b), a = b;
-  piece(a, 1);
+    if (b - ends.back() >= sliver && 1 - b >= sliver) ends.push_back(b);
+  ends.push_back(1.0);
+  const std::size_t pieces = ends.size() - 1;
+  if (placement == ContactParams::Placement::Gauss) {
+    const double r = 0.5 / std::sqrt(3.0);
+    for (std::size_t k = 0; k < pieces; ++k) {
+      const double mid = 0.5 * (ends[k] + ends[k + 1]), w = ends[k + 1] - ends[k];
+      for (const double z : {mid - r * w, mid + r * w}) visit(z, 0.5 * w * g.tangent(z).norm());
+    }
+    return;
+  }
+  // Composite Simpson on each piece, in simpsonParts sub-pieces; |t_int| at a sub-piece's ends
+  // taken just inside it (t_int kinks at a node).
+  const double sag = kSagShare * p.pairs.pMax[pairClass(p, g.I, g.J)];
+  std::vector<double> sub{0.0};
+  for (std::size_t k = 0; k < pieces; ++k) {
+    const int m = simpsonParts(g, ends[k], ends[k + 1], sag);
+    for (int i = 1; i <= m; ++i) sub.push_back(ends[k] + (ends[k + 1] - ends[k]) * i / m);
+  }
+  sub.back() = 1.0;
+  const std::size_t n = sub.size() - 1;
+  std::vector<double> atEnd(n + 1, 0.0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double a = sub[k], b = sub[k + 1], inside = 1e-9 * (b - a);
+    atEnd[k] += (b - a) / 6 * g.tangent(a + inside).norm();
+    atEnd[k + 1] += (b - a) / 6 * g.tangent(b - inside).norm();
+  }
+  for (std::size_t k = 0; k <= n; ++k) {
+    visit(sub[k], atEnd[k]);
+    if (k == n) break;
+    const double mid = 0.5 * (sub[k] + sub[k + 1]);
+    visit(mid, 4 * (sub[k + 1] - sub[k]) / 6 * g.tangent(mid).norm());
+  }
 }
 
 // Where a zone's sections are sought: its intervals on I and J widened by Delta_prox, clamped to
@@ -372,6 +442,39 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
   if (!okJ) xiJ[0] = eqJ[0], xiJ[1] = eqJ[1];
 }
 
+// A section at an interior node of its fibre lies in either element there; locate() takes the
+// one after. The Lobatto placement puts elements at nodes, and where the other fibre's node lies
+// within a sliver of it the two neighbouring pieces pair (i - 1, m - 1) and (i, m): taking the
+// node's element i against m - 1 would couple a pair of beam elements that nothing else
+// couples, a new clique whose fill doubled the factorisation (37-fibre yarn, measured). So a
+// section within kAtNode h of an interior node is moved onto the node, in the element that its
+// neighbour in zeta uses on the side where the other fibre's element is the same (1e-9 h inside
+// it). The cuts' sections land up to 2e-5 h off their nodes (eq. 8's plane is normal to t_int,
+// the cut's to the mean tangent): a move of at most 1e-3 h along the fibre.
+constexpr double kAtNode = 1e-3;
+
+void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) {
+  const std::size_t n = all.size();
+  for (const bool onI : {true, false}) {
+    const Index f = onI ? g.I : g.J, o = onI ? g.J : g.I;
+    const double h = elementLength(g.fs, f);
+    const Index count = g.fs.elementCount[f];
+    auto sf = [&](std::size_t k) -> double& { return onI ? all[k].sI : all[k].sJ; };
+    auto so = [&](std::size_t k) { return onI ? all[k].sJ : all[k].sI; };
+    for (std::size_t k = 0; k < n; ++k) {
+      const double node = std::round(sf(k) / h);
+      if (node <= 0 || node >= double(count) || std::abs(sf(k) - node * h) > kAtNode * h) continue;
+      const Index other = locate(g.fs, o, so(k)).element;
+      const bool before = k > 0 && locate(g.fs, o, so(k - 1)).element == other;
+      const std::size_t neighbour = before ? k - 1 : std::min(k + 1, n - 1);
+      if (neighbour == k) continue;
+      const Index element = locate(g.fs, f, sf(neighbour)).element - g.fs.firstElement[f];
+      if (element == Index(node) - 1) sf(k) = (node - 1e-9) * h;
+      else if (element == Index(node)) sf(k) = node * h;
+    }
+  }
+}
+
 void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
                   const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
@@ -379,7 +482,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
   double total = 0;
   Index e = first;
-  forEachElementAbscissa(g, zones.intermediateLength[z], p.weightedElements, [&](double zeta, double length) {
+  forEachElementAbscissa(g, zones.intermediateLength[z], p, [&](double zeta, double length) {
     el.zeta[e] = zeta;
     el.length[e++] = length;
     total += length;
@@ -390,9 +493,12 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const Index atCrossing = nc > 1 && pointZone(g, windows, p, crossing)
                                ? nearestElement(g, el, first, nc, crossing)
                                : -1;
+  std::vector<ElementSides> all(nc);
+  for (e = first; e < first + nc; ++e)
+    all[e - first] = e == atCrossing ? crossing : sectionsAt(g, el.zeta[e], windows, sep);
+  if (nc > 1 && p.placement == ContactParams::Placement::Lobatto) pairElementsAtNodes(g, all);
   for (e = first; e < first + nc; ++e) {
-    const double zeta = el.zeta[e];
-    ElementSides sides = e == atCrossing ? crossing : sectionsAt(g, zeta, windows, sep);
+    ElementSides sides = all[e - first];
     const bool closest =
         e == atCrossing ||
         (nc == 1 && g.I != g.J && closestSections(g, windows, p.thetaParallel, sides));
@@ -447,7 +553,7 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
       const double L = intermediateLength(g);
       zones.intermediateLength[z] = L;
       Index count = 0;
-      forEachElementAbscissa(g, L, params.weightedElements, [&](double, double) { ++count; });
+      forEachElementAbscissa(g, L, params, [&](double, double) { ++count; });
       zones.elementCount[z] = count;
     }
   });

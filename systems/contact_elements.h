@@ -22,6 +22,13 @@
 //     fibres with the consistent line load int N_a p ds exactly: a uniform line load is
 //     carried as a uniform line force at any p_max (equal point forces at the eq. 7 spacing gave
 //     +-5%, Gauss points of one fibre only +-9% on the other when their grids are offset).
+//     ContactParams::Placement::Lobatto instead: each piece's ends and midpoint with Simpson's
+//     lengths (b - a)/6, 4 (b - a)/6, (b - a)/6 times |t_int| (shared cuts one element), the
+//     piece cut into m <= 8 Simpson sub-pieces where the gap g(zeta) may dip by more than
+//     p_max / 4 between samples (K dzeta^2 / 8, K = |D''| + |D'_perp|^2 / |D|, D = x_I - x_J);
+//     every element end of either fibre then carries an element. A section within 1e-3 h of
+//     an interior node takes the element its neighbour in zeta pairs with the other fibre's,
+//     so no new pair of beam elements is coupled. Paper: eq. 7 (equal spacing and weights).
 //   sections: (x(s) - x_int(zeta_k)) . t_int(zeta_k) = 0 on I and on J                   (eq. 8)
 //     by Newton from sI(zeta_k) (resp. sJ) within the zone interval widened by Delta_prox
 //     (clamped to the fibre), bisection as safeguard; for a point element of two different

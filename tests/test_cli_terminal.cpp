@@ -50,10 +50,19 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(y.status == 0);
   CHECK(countLines(y.output, R"(^    (bottom|top): cylinder, mu 0, p_max 0.0001 mm, 22 points per fibre element$)") == 2);
   CHECK(y.output.find("caps at") == std::string::npos);
-  // Its bending-free fibres, their end sections turned a quarter turn with the full torsion:
-  // G J phi / L = 28 077 MPa x 1.571e-8 mm^4 x (pi / 2) / 0.5 mm = 1.39e-3 N mm, noted
-  // (engine/torqued_strings.h).
-  CHECK(countLines(y.output, R"(^  note: 19 fibres \(yarn.f0, yarn.f1, yarn.f2, yarn.f3, \.\.\.\) without )"
+  // Its fibres have bending stiffness (bending factor 0.1): no note. With Table 2's 0 and the
+  // end sections turned a quarter turn with the full torsion, G J phi / L = 28 077 MPa x
+  // 1.571e-8 mm^4 x (pi / 2) / 0.5 mm = 1.39e-3 N mm, noted (engine/torqued_strings.h).
+  CHECK(countLines(y.output, "without bending stiffness") == 0);
+  std::filesystem::create_directories(scratch.path());
+  nlohmann::json strings = nlohmann::json::parse(
+      readFile(sourcePath("samples/yarn_procedure.json")), nullptr, true, true);
+  strings["materials"][0]["bending_factor"] = 0;
+  strings["tables"]["twist"] = {{0, 0}, {2, 0}, {3, 1.5707963267948966}};
+  writeFile(scratch / "strings.json", strings.dump());
+  const RunResult z = runFibra({"check", scratch / "strings.json"}, scratch);
+  CHECK(z.status == 0);
+  CHECK(countLines(z.output, R"(^  note: 19 fibres \(yarn.f0, yarn.f1, yarn.f2, yarn.f3, \.\.\.\) without )"
                              R"(bending stiffness are twisted about their axis, up to 0.00139 N mm of )"
                              R"(torque \(yarn.f[0-9]+, R = 0.01 mm\): a string holds its straight state only up )"
                              R"(to about T R .*, beyond which it zigzags from node to node .*"Strings )"
@@ -61,7 +70,6 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(countLines(r.output, "without bending stiffness") == 0);
   // The roller sample with a roller 20x thinner and p_max 1e-5 mm: the 32 points of the cap leave
   // a sagitta of (0.25 mm x 0.0966 / 2)^2 / (8 x 0.05 mm) = 3.65e-4 mm = 36.5 p_max, said.
-  std::filesystem::create_directories(scratch.path());
   nlohmann::json roller = nlohmann::json::parse(readFile(sourcePath("samples/roller_drag.json")),
                                                 nullptr, true, true);
   roller["tools"][0]["radius"] = 0.05;

@@ -21,7 +21,8 @@ namespace {
 constexpr double kQ = 0.01, kL = 6;  // line load, N/mm; U's length, mm
 
 // `elements` on U and D (they need not match); `onPlane`: a plane tool instead of D.
-SceneDef lineContact(int elementsU, int elementsD, bool onPlane, bool paper = false) {
+SceneDef lineContact(int elementsU, int elementsD, bool onPlane,
+                     const std::string& placement = "weighted") {
   std::string text = R"({
     "units": "mm-N-MPa",
     "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
@@ -40,8 +41,8 @@ SceneDef lineContact(int elementsU, int elementsD, bool onPlane, bool paper = fa
   if (!onPlane) text += R"(, {"type": "clamp", "group": "D.all"})";
   text += R"(],
     "loads": [{"type": "line_force", "group": "U.all", "vector": [0, 0, -0.01]}],
-    "contact": {"max_penetration": 1e-5)" +
-          std::string(paper ? R"(, "element_placement": "paper"},)" : "},");
+    "contact": {"max_penetration": 1e-5, "element_placement": ")" +
+          placement + R"("},)";
   if (onPlane)
     text += R"( "tools": [{"name": "floor", "type": "plane", "point": [0, 0, 0.1],
                            "normal": [0, 0, 1]}],)";
@@ -78,10 +79,14 @@ void solve(World& w) {
 }  // namespace
 
 TEST_CASE("a uniform line load on a parallel fibre is carried as a uniform line force") {
+  // Gauss points ("weighted") or the pieces' ends and midpoints with Simpson's weights
+  // ("lobatto"): both exact for the consistent line load on quadratic elements.
+  for (const char* placement : {"weighted", "lobatto"})
   for (auto [eu, ed] : {std::pair{12, 12}, std::pair{12, 7}, std::pair{5, 12}}) {
+    CAPTURE(placement);
     CAPTURE(eu);
     CAPTURE(ed);
-    World w(lineContact(eu, ed, false));
+    World w(lineContact(eu, ed, false, placement));
     solve(w);
     const LineForce f = lineForce(w);
     CHECK(f.lateral >= 2 * std::min(eu, ed));
@@ -107,7 +112,7 @@ TEST_CASE("equally spaced elements (the paper's eq. 7) carry a uniform line load
   // The option the weighted placement replaces, kept for comparison: equal penalties at a
   // spacing that does not match the nodes' make the line force oscillate (+-4.9% measured on
   // shared/cases/line_contact_stiff).
-  World w(lineContact(12, 12, false, true));
+  World w(lineContact(12, 12, false, "paper"));
   solve(w);
   const ContactSnapshot c = w.contactSnapshot();
   double lo = 1e300, hi = 0, total = 0;
