@@ -86,8 +86,9 @@ struct ContactParams {
                                         // diverged (systems/normal_linearisation.h)
   // Line contacts' elements (systems/contact_elements.h): weighted, at the two Gauss points of
   // each piece between both fibres' element ends (Gauss), or at the pieces' ends and midpoints
-  // (Lobatto: three-point Gauss-Lobatto, Simpson's weights, so every element end of either
-  // fibre carries one), or equally spaced with equal weights (Paper, eq. 7).
+  // (Lobatto: three-point Gauss-Lobatto, Simpson's weights, so the element ends of either fibre
+  // carry one, and finer where the gap curves), or equally spaced with equal weights (Paper,
+  // eq. 7).
   enum class Placement : std::uint8_t { Gauss, Lobatto, Paper };
   Placement placement = Placement::Gauss;
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in

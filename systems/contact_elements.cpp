@@ -172,13 +172,16 @@ double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, d
 }
 
 // Lobatto sampling: the missed dip of the gap g(zeta) = |D| - R_I - R_J, D = x_I - x_J, between
-// samples dz apart is at most K dz^2 / 8, K a bound of |g''| on the piece; it is kept within
+// samples dz apart is at most K dz^2 / 8 for K >= |g''| on the piece; with K estimated below it is kept within
 // kSagShare p_max (the tools' rule, systems/tool_detection.h) by cutting the piece into m
 // Simpson sub-pieces (samples (b - a) / 2m apart), m <= kMaxSimpsonParts. On a piece both
 // sections lie in one element each, so with x = P.a + P.b z + P.c z^2 and dz/dzeta = 2 d / h:
 //   D'' = 2 c_I (2 d_I / h_I)^2 - 2 c_J (2 d_J / h_J)^2   (constant on the piece),
-//   g'' = n . D'' + |D'_perp|^2 / |D| <= |D''| + max over the piece's ends of |D'_perp|^2 / |D|,
-// |D| taken at least (R_I + R_J) / 2. Bent fibres lying side by side (a yarn's) dip between
+//   g'' = n . D'' + |D'_perp|^2 / |D|, estimated by |D''| + the larger of |D'_perp|^2 / |D| at
+// the piece's ends, |D| taken at least (R_I + R_J) / 2: an estimate, not a bound (|D| is least
+// inside the piece, at a dip; a piece that spans a dropped sliver cut uses its midpoint's
+// elements), and m is capped. So the Lobatto elements sample the gap much more finely than the
+// Gauss points but do not guarantee p_max / 4. Bent fibres lying side by side (a yarn's) dip between
 // samples by 1.1 p_max at h / 2 spacing (37 fibres, 8 elements, measured); a shallow crossing's
 // closest point lies between them.
 constexpr double kSagShare = 0.25;
@@ -219,10 +222,10 @@ int simpsonParts(const Intermediate& g, double a, double b, double sag) {
 // zeta and both rules below are exact for cubics. On a piece [a, b] of width w = b - a:
 //   Gauss:   the two Gauss points (a + b) / 2 -+ w / (2 sqrt 3), each of length w / 2 |t_int|;
 //   Lobatto: a, (a + b) / 2 and b with lengths w / 6, 4 w / 6, w / 6 times |t_int| (Simpson),
-//            a cut shared by two pieces being one element carrying both sixths. Every element
-//            end of either fibre inside the zone then carries an element: a kink of the
-//            centreline at a node, where the Gauss points (0.21 h away) see the fibres apart,
-//            is sampled where it is deepest.
+//            a cut shared by two pieces being one element carrying both sixths. Every kept
+//            cut then carries an element: a kink of the centreline at a node, where the Gauss
+//            points (0.21 h away) see the fibres apart, is sampled where it is deepest (a node
+//            within h_min / 10 of a kept cut, whose cut was dropped, within that distance).
 // Paper: eq. 7, Nc equally spaced elements zeta_k = (k - 1) / (Nc - 1), each of length L_int / Nc
 // (equal weights).
 template <class Visit>
@@ -447,11 +450,14 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
 // within a sliver of it the two neighbouring pieces pair (i - 1, m - 1) and (i, m): taking the
 // node's element i against m - 1 would couple a pair of beam elements that nothing else
 // couples, a new clique whose fill doubled the factorisation (37-fibre yarn, measured). So a
-// section within kAtNode h of an interior node is moved onto the node, in the element that its
-// neighbour in zeta uses on the side where the other fibre's element is the same (1e-9 h inside
-// it). The cuts' sections land up to 2e-5 h off their nodes (eq. 8's plane is normal to t_int,
-// the cut's to the mean tangent): a move of at most 1e-3 h along the fibre.
-constexpr double kAtNode = 1e-3;
+// section within kAtNode h of an interior node is moved to the node, kInside h into the element
+// that its neighbour in zeta uses on the side where the other fibre's element is the same. The
+// cuts' sections land up to 2e-5 h off their nodes (eq. 8's plane is normal to t_int, the cut's
+// to the mean tangent): a move of at most 1e-3 h along the fibre. kInside is beyond the node
+// rule's 1e-9 h (kNodeSnap, systems/contact_geometry.h) by a margin no rounding of s / h
+// crosses: the section is a point of that element alone (its one-sided tangent, and no widened
+// clique when the normals are linearised in Newton).
+constexpr double kAtNode = 1e-3, kInside = 1e-7;
 
 void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) {
   const std::size_t n = all.size();
@@ -469,8 +475,8 @@ void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) 
       const std::size_t neighbour = before ? k - 1 : std::min(k + 1, n - 1);
       if (neighbour == k) continue;
       const Index element = locate(g.fs, f, sf(neighbour)).element - g.fs.firstElement[f];
-      if (element == Index(node) - 1) sf(k) = (node - 1e-9) * h;
-      else if (element == Index(node)) sf(k) = node * h;
+      if (element == Index(node) - 1) sf(k) = (node - kInside) * h;
+      else if (element == Index(node)) sf(k) = (node + kInside) * h;
     }
   }
 }

@@ -25,10 +25,12 @@
 //     ContactParams::Placement::Lobatto instead: each piece's ends and midpoint with Simpson's
 //     lengths (b - a)/6, 4 (b - a)/6, (b - a)/6 times |t_int| (shared cuts one element), the
 //     piece cut into m <= 8 Simpson sub-pieces where the gap g(zeta) may dip by more than
-//     p_max / 4 between samples (K dzeta^2 / 8, K = |D''| + |D'_perp|^2 / |D|, D = x_I - x_J);
-//     every element end of either fibre then carries an element. A section within 1e-3 h of
-//     an interior node takes the element its neighbour in zeta pairs with the other fibre's,
-//     so no new pair of beam elements is coupled. Paper: eq. 7 (equal spacing and weights).
+//     p_max / 4 between samples (K dzeta^2 / 8, K = |D''| + |D'_perp|^2 / |D| estimated,
+//     D = x_I - x_J); every kept cut, so every element end of either fibre but those within
+//     h_min / 10 of another cut, then carries an element. A section within 1e-3 h of an
+//     interior node takes the element its neighbour in zeta pairs with the other fibre's (1e-7 h
+//     inside it), so no new pair of beam elements is coupled. Paper: eq. 7 (equal spacing and
+//     weights).
 //   sections: (x(s) - x_int(zeta_k)) . t_int(zeta_k) = 0 on I and on J                   (eq. 8)
 //     by Newton from sI(zeta_k) (resp. sJ) within the zone interval widened by Delta_prox
 //     (clamped to the fibre), bisection as safeguard; for a point element of two different
