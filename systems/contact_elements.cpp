@@ -172,18 +172,20 @@ double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, d
 }
 
 // Lobatto sampling: the missed dip of the gap g(zeta) = |D| - R_I - R_J, D = x_I - x_J, between
-// samples dz apart is at most K dz^2 / 8 for K >= |g''| on the piece; with K estimated below it is kept within
-// kSagShare p_max (the tools' rule, systems/tool_detection.h) by cutting the piece into m
-// Simpson sub-pieces (samples (b - a) / 2m apart), m <= kMaxSimpsonParts. On a piece both
-// sections lie in one element each, so with x = P.a + P.b z + P.c z^2 and dz/dzeta = 2 d / h:
+// samples dz apart is at most K dz^2 / 8 for K >= |g''| on the piece. With K estimated below,
+// it is kept within kSagShare p_max (the tools' rule, systems/tool_detection.h) by cutting the
+// piece into m Simpson sub-pieces (samples (b - a) / 2m apart), m <= kMaxSimpsonParts. On a
+// piece both sections lie in one element each, so with x = P.a + P.b z + P.c z^2 and
+// dz/dzeta = 2 d / h:
 //   D'' = 2 c_I (2 d_I / h_I)^2 - 2 c_J (2 d_J / h_J)^2   (constant on the piece),
 //   g'' = n . D'' + |D'_perp|^2 / |D|, estimated by |D''| + the larger of |D'_perp|^2 / |D| at
 // the piece's ends, |D| taken at least (R_I + R_J) / 2: an estimate, not a bound (|D| is least
 // inside the piece, at a dip; a piece that spans a dropped sliver cut uses its midpoint's
 // elements), and m is capped. So the Lobatto elements sample the gap much more finely than the
-// Gauss points but do not guarantee p_max / 4. Bent fibres lying side by side (a yarn's) dip between
-// samples by 1.1 p_max at h / 2 spacing (37 fibres, 8 elements, measured); a shallow crossing's
-// closest point lies between them.
+// Gauss points but do not guarantee p_max / 4. Bent fibres lying side by side (a yarn's) dip
+// between samples by 1.1 p_max at h / 2 spacing (37 fibres, 8 elements, measured); a shallow
+// crossing's closest point lies between them. m follows the state, so a zone's element count
+// may change from one detection to the next.
 constexpr double kSagShare = 0.25;
 constexpr int kMaxSimpsonParts = 8;
 

@@ -47,7 +47,8 @@ SceneDef heldPair(const std::function<double(double)>& shape, int vertices, int 
       {"name": "D", "material": "m", "radius": 0.1, "elements": )" +
                            std::to_string(elementsD) + R"(,
        "geometry": {"type": "line", "points": [[-3, 0, 0], [3, 0, 0]], "director": [0, 1, 0]}}],
-    "boundary_conditions": [{"type": "clamp", "group": "U.all"}, {"type": "clamp", "group": "D.all"}],
+    "boundary_conditions": [{"type": "clamp", "group": "U.all"},
+                            {"type": "clamp", "group": "D.all"}],
     "contact": {"max_penetration": 1e-4, "element_placement": ")" +
                            placement + R"("},
     "steps": [{"end_time": 1, "increments": 1}]})";
