@@ -40,9 +40,9 @@ std::string lawLine(const ContactParams& c) {
                            initial.c_str(), c.penaltyChange, c.pRegRatio, c.gMax,
                            c.symmetrised ? "symmetrised" : "consistent");
   if (c.fibres) out += format(", element placement %s, normals %s",
-                              c.placement == ContactParams::Placement::Gauss     ? "weighted"
-                              : c.placement == ContactParams::Placement::Lobatto ? "lobatto"
-                                                                                 : "paper",
+                              c.placement == ElementPlacement::Weighted  ? "weighted"
+                              : c.placement == ElementPlacement::Lobatto ? "lobatto"
+                                                                         : "paper",
                               c.newtonNormals && !c.newtonFrictionlessOnly ? "linearised in Newton"
                                                                            : "updated by loop B");
   if (c.fibres && (!c.newtonNormals || c.newtonFrictionlessOnly))

@@ -53,6 +53,14 @@ struct ContactClasses {
   std::vector<double> penaltyMax;    //   section stiffness (ZoneStore::stiffness)
 };
 
+// Where a line contact's elements sit (systems/contact_elements.h, docs/CONTACT.md 1.4):
+// Weighted: the two Gauss points of each piece between both fibres' element ends, weighted by
+// length (a uniform line load carried as a uniform line force); Lobatto: the pieces' ends and
+// midpoints with Simpson's weights (three-point Gauss-Lobatto; also a uniform line force), so the
+// element ends of either fibre carry one, cut finer where the gap curves; Paper: equally spaced
+// with equal weights (eq. 7).
+enum class ElementPlacement : std::uint8_t { Weighted, Lobatto, Paper };
+
 struct ContactParams {
   // --- per fibre ---
   std::vector<double> reach;           // half of its share of Delta_prox, mm
@@ -84,13 +92,7 @@ struct ContactParams {
   bool newtonFrictionlessOnly = false;  // with newtonNormals: only the parallel elements (eq. 10
                                         // crossing weight 0) of frictionless pairs, once loop B
                                         // diverged (systems/normal_linearisation.h)
-  // Line contacts' elements (systems/contact_elements.h): weighted, at the two Gauss points of
-  // each piece between both fibres' element ends (Gauss), or at the pieces' ends and midpoints
-  // (Lobatto: three-point Gauss-Lobatto, Simpson's weights, so the element ends of either fibre
-  // carry one, and finer where the gap curves), or equally spaced with equal weights (Paper,
-  // eq. 7).
-  enum class Placement : std::uint8_t { Gauss, Lobatto, Paper };
-  Placement placement = Placement::Gauss;
+  ElementPlacement placement = ElementPlacement::Weighted;  // line contacts' elements (above)
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in
                                 // loop B (systems/crossing_follow.h)
   bool facingParticles = false; // frictionless elements act on the outlines' points extremal

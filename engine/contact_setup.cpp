@@ -77,10 +77,7 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.mu = def.friction;
   p.gMax = std::isfinite(def.maxReversibleSlip) ? def.maxReversibleSlip : 0.005 * R;
   p.symmetrised = def.frictionTangent == FrictionTangent::Symmetrised;
-  p.placement = def.elementPlacement == ElementPlacement::Weighted ? ContactParams::Placement::Gauss
-                : def.elementPlacement == ElementPlacement::Lobatto
-                    ? ContactParams::Placement::Lobatto
-                    : ContactParams::Placement::Paper;
+  p.placement = def.elementPlacement;
   if (def.frictionHoldAfter < 0 || def.frictionHoldAfter > 255)
     throw SceneError("contact.friction_hold_after: must be in [0, 255], got " +
                      std::to_string(def.frictionHoldAfter));

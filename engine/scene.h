@@ -6,6 +6,7 @@
 
 #include "components/beam_store.h"
 #include "components/boundary.h"
+#include "components/contact_params.h"
 #include "components/solver_settings.h"
 #include "components/tools.h"
 #include "core/errors.h"
@@ -171,11 +172,6 @@ struct OutputDef {
 // Contact parameters. Detection (paper section 3) and mechanics (section 4). NaN means "derive
 // the default" (docs/SCENE.md gives the rules, which use the radii and element lengths).
 enum class FrictionTangent { Consistent, Symmetrised };
-// Where a line contact's elements sit (docs/CONTACT.md 1.4): Gauss points between both fibres'
-// element ends, weighted (uniform line force); those ends and the midpoints between them,
-// weighted by Simpson's rule (Lobatto: also a uniform line force, and every node of either
-// fibre sampled); or equally spaced with equal penalties (eq. 7).
-enum class ElementPlacement { Weighted, Lobatto, Paper };
 // How fibre-fibre normals follow the state: recomputed at every Newton assembly with their
 // derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop), or
 // Loop until loop B diverges in an increment, which then starts again with the normals of its
@@ -222,7 +218,7 @@ struct ContactDef {
   FrictionTangent frictionTangent = FrictionTangent::Consistent;
   int maxDetectionLoops = 3;          // n_A: contact elements fixed point
   int maxNormalLoops = 3;             // n_B: normals fixed point
-  ElementPlacement elementPlacement = ElementPlacement::Weighted;
+  ElementPlacement elementPlacement = ElementPlacement::Weighted;  // components/contact_params.h
   int frictionHoldAfter = 2;          // stick/slip changes of an element in a Newton pass before
                                       // its status is held for the pass (0: never; <= 255)
   double frictionHoldTolerance = 0.01;  // a held status is consistent within this relative

@@ -232,7 +232,7 @@ int simpsonParts(const Intermediate& g, double a, double b, double sag) {
 // (equal weights).
 template <class Visit>
 void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams& p, Visit visit) {
-  const ContactParams::Placement placement = p.placement;
+  const ElementPlacement placement = p.placement;
   const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
   const double h = std::min(hI, hJ);
   const double count = std::floor(2 * L / h);
@@ -240,7 +240,7 @@ void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams
     visit(0.5, L);
     return;
   }
-  if (placement == ContactParams::Placement::Paper) {
+  if (placement == ElementPlacement::Paper) {
     for (int k = 0; k < int(count); ++k) visit(k / (count - 1), L / count);
     return;
   }
@@ -255,7 +255,7 @@ void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams
     if (b - ends.back() >= sliver && 1 - b >= sliver) ends.push_back(b);
   ends.push_back(1.0);
   const std::size_t pieces = ends.size() - 1;
-  if (placement == ContactParams::Placement::Gauss) {
+  if (placement == ElementPlacement::Weighted) {
     const double r = 0.5 / std::sqrt(3.0);
     for (std::size_t k = 0; k < pieces; ++k) {
       const double mid = 0.5 * (ends[k] + ends[k + 1]), w = ends[k + 1] - ends[k];
@@ -504,7 +504,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   std::vector<ElementSides> all(nc);
   for (e = first; e < first + nc; ++e)
     all[e - first] = e == atCrossing ? crossing : sectionsAt(g, el.zeta[e], windows, sep);
-  if (nc > 1 && p.placement == ContactParams::Placement::Lobatto) pairElementsAtNodes(g, all);
+  if (nc > 1 && p.placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
   for (e = first; e < first + nc; ++e) {
     ElementSides sides = all[e - first];
     const bool closest =

@@ -22,7 +22,7 @@
 //     fibres with the consistent line load int N_a p ds exactly: a uniform line load is
 //     carried as a uniform line force at any p_max (equal point forces at the eq. 7 spacing gave
 //     +-5%, Gauss points of one fibre only +-9% on the other when their grids are offset).
-//     ContactParams::Placement::Lobatto instead: each piece's ends and midpoint with Simpson's
+//     ElementPlacement::Lobatto instead: each piece's ends and midpoint with Simpson's
 //     lengths (b - a)/6, 4 (b - a)/6, (b - a)/6 times |t_int| (shared cuts one element), the
 //     piece cut into m <= 8 Simpson sub-pieces where the gap g(zeta) may dip by more than
 //     p_max / 4 between samples (K dzeta^2 / 8, K = |D''| + |D'_perp|^2 / |D| estimated,
