@@ -118,6 +118,8 @@ struct StepReport {
   int totalIterations = 0;  // Newton iterations of all attempts (cutbacks included)
   int cutbacks = 0;         // failed attempts (each cut the attempt size, engine/step_driver.cpp)
   int subIncrements = 0;    // converged attempts that make up this increment
+  int predicted = 0;        // converged attempts that started from the secant predictor
+  int predictorRetries = 0;  // predicted attempts that failed and were retried without it
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt
   double residual = 0;      // final relative residual
   double viscousForce = 0;  // |viscous continuation force on the free DOFs| / F_ref at the end

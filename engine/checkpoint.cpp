@@ -38,7 +38,7 @@ namespace fibra {
 namespace {
 
 constexpr char kMagic[] = "fibra-checkpoint\n";
-constexpr std::uint32_t kFormat = 1;
+constexpr std::uint32_t kFormat = 2;
 
 template <class T>
 struct IsArray : std::false_type {};
@@ -140,8 +140,8 @@ void field(A& a, T& v) {
 // leaves the world as it was.
 struct Carried {
   double time = 0, dt = 0;
-  int step = 0, increment = 0, easy = 0;
-  Eigen::VectorXd q, convergedQ, convergedR, convergedFext;
+  int step = 0, increment = 0, rateStep = -1;
+  Eigen::VectorXd q, convergedQ, convergedR, convergedFext, rate;
   EnergyStore energy;
   ContactState committed;
   std::vector<std::uint64_t> cliqueKeys;
@@ -149,12 +149,12 @@ struct Carried {
 
 // The carried fields in the file's order.
 template <class A>
-void carried(A& a, double& time, int& step, int& increment, double& dt, int& easy,
+void carried(A& a, double& time, int& step, int& increment, double& dt, int& rateStep,
              Eigen::VectorXd& q, Eigen::VectorXd& convergedQ, Eigen::VectorXd& convergedR,
-             Eigen::VectorXd& convergedFext, EnergyStore& energy, ContactState& committed,
-             std::vector<std::uint64_t>& cliqueKeys) {
-  field(a, time), field(a, step), field(a, increment), field(a, dt), field(a, easy);
-  field(a, q), field(a, convergedQ), field(a, convergedR), field(a, convergedFext);
+             Eigen::VectorXd& convergedFext, Eigen::VectorXd& rate, EnergyStore& energy,
+             ContactState& committed, std::vector<std::uint64_t>& cliqueKeys) {
+  field(a, time), field(a, step), field(a, increment), field(a, dt), field(a, rateStep);
+  field(a, q), field(a, convergedQ), field(a, convergedR), field(a, convergedFext), field(a, rate);
   field(a, energy);
   field(a, committed);
   field(a, cliqueKeys);
@@ -162,8 +162,8 @@ void carried(A& a, double& time, int& step, int& increment, double& dt, int& eas
 
 // The scene a checkpoint belongs to: every field of the scene (after its generators) but those
 // a user may change to get a stopped run going again: per step its name, iteration and cutback
-// limits, tolerances, line search, damping (where some step has damping) and output_every; the
-// solver; the output but its probes (whose nodes the history's columns name).
+// limits, tolerances, line search, predictor, damping (where some step has damping) and
+// output_every; the solver; the output but its probes (whose nodes the history's columns name).
 std::uint64_t fingerprint(const WorldState& w) {
   SceneDef s = w.scene;
   // Whether some step has damping sets the history's columns (viscous_force): a damping may
@@ -175,6 +175,7 @@ std::uint64_t fingerprint(const WorldState& w) {
     st.name = d.name, st.maxIterations = d.maxIterations, st.maxCutbacks = d.maxCutbacks;
     st.forceTolerance = d.forceTolerance, st.incrementTolerance = d.incrementTolerance;
     st.lineSearch = d.lineSearch, st.damping = d.damping, st.outputEvery = d.outputEvery;
+    st.predictor = d.predictor;
   }
   s.solver = SolverDef{};
   std::vector<ProbeDef> probes = std::move(s.output.probes);
@@ -210,8 +211,8 @@ void saveCheckpoint(const WorldState& w, std::ostream& out) {
   std::uint64_t scene = fingerprint(w);
   header(a, format, version, indexSize, scene);
   WorldState& m = const_cast<WorldState&>(w);  // `field` reads and writes through one path
-  carried(a, m.time, m.step, m.increment, m.dt, m.easy, m.fibres.q, m.converged.q, m.converged.r,
-          m.converged.fext, m.energy, m.committed, m.cliques.key);
+  carried(a, m.time, m.step, m.increment, m.dt, m.rateStep, m.fibres.q, m.converged.q,
+          m.converged.r, m.converged.fext, m.rate, m.energy, m.committed, m.cliques.key);
   const std::string text = body.str();
   const std::uint64_t length = text.size();
   std::uint64_t hash = kFnvStart;
@@ -263,24 +264,26 @@ void restoreCheckpoint(WorldState& s, std::istream& file) {
         "written for another scene: its fibres, materials, groups, boundary conditions, loads, "
         "steps, contact, tools, stabilisation or probes differ, or damping was switched on or "
         "off (only the steps' names, iteration and cutback limits, tolerances, line search, "
-        "damping where some step has it, and output_every, the solver and the output but its "
-        "probes may change)");
+        "predictor, damping where some step has it, and output_every, the solver and the "
+        "output but its probes may change)");
   Carried w;
-  carried(a, w.time, w.step, w.increment, w.dt, w.easy, w.q, w.convergedQ, w.convergedR,
-          w.convergedFext, w.energy, w.committed, w.cliqueKeys);
+  carried(a, w.time, w.step, w.increment, w.dt, w.rateStep, w.q, w.convergedQ, w.convergedR,
+          w.convergedFext, w.rate, w.energy, w.committed, w.cliqueKeys);
   if (a.remaining != 0) throw CheckpointError("the file is corrupt (bytes after its end)");
   const Index dofs = Index(s.fibres.q.size());
   const int steps = int(s.scene.steps.size());
   if (Index(w.q.size()) != dofs || Index(w.convergedQ.size()) != dofs || w.step < 0 ||
       w.step > steps || w.increment < 0 ||
-      (w.step < steps && w.increment >= s.scene.steps[size_t(w.step)].increments))
+      (w.step < steps && w.increment >= s.scene.steps[size_t(w.step)].increments) ||
+      w.rateStep < -1 || w.rateStep > steps || (w.rateStep >= 0 && Index(w.rate.size()) != dofs))
     throw CheckpointError("the file is corrupt (its progress is not this scene's)");
 
-  s.time = w.time, s.step = w.step, s.increment = w.increment, s.dt = w.dt, s.easy = w.easy;
+  s.time = w.time, s.step = w.step, s.increment = w.increment, s.dt = w.dt, s.rateStep = w.rateStep;
   s.fibres.q = std::move(w.q);
   s.converged.q = std::move(w.convergedQ);
   s.converged.r = std::move(w.convergedR);
   s.converged.fext = std::move(w.convergedFext);
+  s.rate = std::move(w.rate);
   s.energy = std::move(w.energy);
   s.committed = std::move(w.committed);
   s.trial = s.committed;

@@ -201,7 +201,7 @@ NewtonResult contactPasses(WorldState& w, double tTry, const NewtonSettings& set
   const Eigen::VectorXd qEntry = w.fibres.q;
   Eigen::VectorXd qDetected = w.fibres.q;
   if (!detect(w, w.time, report)) return cancelled(nr);
-  applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+  startAttempt(w, tTry);
   for (int a = 1; a <= s.maxDetectionLoops; ++a) {
     report.detectionLoops = a;
     nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);
@@ -232,7 +232,7 @@ NewtonResult contactPasses(WorldState& w, double tTry, const NewtonSettings& set
       w.fibres.q = qEntry;
       w.trial.history = w.committed.history;
       runStage(w, w.pipeline.reference, w.time);
-      applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+      startAttempt(w, tTry);
       ++report.restarts;
     }
   }

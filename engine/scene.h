@@ -129,6 +129,9 @@ struct StepDef {
   double incrementTolerance = 1e-10;  // remaining correction: |dx0| <= tol * R_max, |dg| <= tol
   int maxCutbacks = 8;             // failed attempts of an increment before the step fails
   bool lineSearch = false;         // non-monotone line search in Newton (systems/newton.h)
+  // Secant predictor: an attempt after the step's first converged one starts from
+  // q_n + dt (q_n - q_{n-1}) / dt_{n-1} on the free DOFs (engine/step_driver.cpp).
+  bool predictor = true;
   double damping = 0;              // viscous continuation c, N/mm x pseudo-time per node (0: off)
   int outputEvery = 1;             // write output every n converged increments (and the last)
   // Forced normals (paper section 5.2.1): unit direction D; zero: the normal rules (eq. 10).

@@ -1,10 +1,12 @@
 // Step driver: one increment of pseudo-time, as a list of stages.
 //   1. target time of the next increment of the current scene step;
-//   2. attempt: trial contact state = committed; held DOFs moved to their targets; Newton on the
-//      free DOFs (with contact: the nested loops of engine/contact_loops.h);
+//   2. attempt: trial contact state = committed; held DOFs moved to their targets, the free ones
+//      by the secant predictor (startAttempt); Newton on the free DOFs (with contact: the nested
+//      loops of engine/contact_loops.h);
 //   3. converged: commit (swap trial and committed, keep q, r, f_ext) and go on to the target;
-//      failed: discard the trial (back to the last converged q, r, f_ext), cut the attempt's
-//      size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
+//      failed: discard the trial (back to the last converged q, r, f_ext); an attempt that
+//      started from the predictor is tried again at its size without it, any other cuts the
+//      attempt's size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
 //      state. Where nothing the scene prescribes changes over the failed attempt and the step
 //      has no damping, a smaller attempt would repeat it exactly: the step fails at once. The
 //      attempt size adapts (nextIncrement): it grows back after easy attempts, up to the
@@ -68,6 +70,22 @@ double relativeFree(const WorldState& w, const Eigen::VectorXd& f) {
   return relativeToReference(w.system, f, w.lengthScale, w.forceFloor);
 }
 
+// The secant predictor is dropped where it raises |r_free| at the attempt's start more than
+// this factor over the start without it: on load-controlled bending (the roll-up, the
+// cantilever) the extrapolated state is 1e5-1e6 x further out and Newton takes 15-20% more
+// iterations from it; on prescribed motion (twist, squeeze, drag) it is 0.01-1.9 x and saves
+// 20-60% (docs/METHOD.md "Secant predictor").
+constexpr double kPredictorRise = 10;
+
+// |r_free|, the weighted 2-norm of systems/newton.cpp (director rows over the length scale), N.
+double freeResidual(const WorldState& w) {
+  double r2 = 0;
+  for (Index d = 0; d < Index(w.system.r.size()); ++d)
+    if (w.system.equation[d] >= 0)
+      r2 += std::pow(w.system.r(d) * (d % kNodeDofs < 3 ? 1.0 : 1 / w.lengthScale), 2);
+  return std::sqrt(r2);
+}
+
 NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   NewtonSettings settings;
   settings.maxIterations = st.maxIterations;
@@ -123,6 +141,8 @@ void balanceEnergy(WorldState& w) {
 void commit(WorldState& w, double time) {
   if (hasContact(w)) std::swap(w.committed, w.trial);
   balanceEnergy(w);
+  w.rate = (w.fibres.q - w.converged.q) / (time - w.time);  // per unit pseudo-time, per DOF
+  w.rateStep = w.step;
   w.converged.q = w.fibres.q;
   w.converged.r = w.system.r;
   w.converged.fext = w.system.fext;
@@ -171,7 +191,7 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
     if (hasContact(w)) {
       r = solveContactIncrement(w, tTry, settings, cb, timings, contact);
     } else {
-      applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+      startAttempt(w, tTry);
       r = solveNewton(w.fibres.q, w.system, w.solver, settings, cb, timings);
     }
   });
@@ -184,6 +204,26 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
 }
 
 }  // namespace
+
+// The attempt from q_n (converged at t_n = w.time) to tTry starts, where w.predict, from the
+// secant predictor q_n + (tTry - t_n) v_n, v_n = (q_n - q_{n-1}) / (t_n - t_{n-1}) the rate of
+// the step's last converged attempt (commit), on the free DOFs; the held DOFs go to their
+// targets either way. The predictor is kept unless it raises |r_free| above kPredictorRise times
+// that of the start without it (then w.predict is cleared).
+void startAttempt(WorldState& w, double tTry) {
+  applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+  if (!w.predict) return;
+  assembleResidual(w, tTry);
+  const double held = freeResidual(w);
+  const Eigen::VectorXd q0 = w.fibres.q;
+  w.fibres.q += (tTry - w.time) * w.rate;
+  applyConstraints(w.fibres, w.constraints, w.groups, tTry, w.fibres.q);
+  assembleResidual(w, tTry);
+  if (!(freeResidual(w) <= kPredictorRise * held)) {
+    w.fibres.q = q0;
+    w.predict = false;
+  }
+}
 
 void runStage(WorldState& w, TaskGraph& stage, double t, bool withTangent) {
   w.input.time = t;
@@ -227,6 +267,7 @@ StepReport advance(WorldState& w) {
   };
   const double nominal = (st.endTime - tStart) / st.increments;
   if (w.increment == 0 || !(w.dt > 0)) w.dt = nominal;
+  bool retried = false;  // a predicted attempt failed: the increment goes on without the predictor
   while (w.time < t1) {
     const double tTry = w.time + w.dt >= t1 - 1e-9 * nominal ? t1 : w.time + w.dt;
     if (!(tTry - w.time > 1e-12 * std::max(std::abs(t1), nominal)))
@@ -234,19 +275,29 @@ StepReport advance(WorldState& w) {
                                           " failed: the attempt size fell to " +
                                           number(tTry - w.time) +
                                           ", the round-off of the pseudo-time (" + rep.message + ")");
+    w.predict = st.predictor && !retried && w.rateStep == w.step;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
     rep.totalIterations += nr.iterations;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {
       const double size = tTry - w.time;
       rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
+      rep.predicted += w.predict;
       commit(w, tTry);
       rep.iterations = nr.iterations;
       rep.residual = nr.residual;
       w.dt = nextIncrement(w.dt, nominal, st, nr);
+      retried = false;
       continue;
     }
     discard(w);
+    if (w.predict && nr.outcome == NewtonOutcome::Failed) {
+      retried = true;
+      ++rep.predictorRetries;
+      rep.message += (rep.message.empty() ? "" : "; ") + std::string("predictor off at t = ") +
+                     number(tTry) + ": " + nr.message;
+      continue;
+    }
     w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled) return stop(StepStatus::Cancelled, "cancelled");

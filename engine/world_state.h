@@ -75,7 +75,12 @@ struct WorldState {
   int step = 0;              // scene step of the next increment
   int increment = 0;         // increments of `step` already converged
   double dt = 0;             // pseudo-time of the next attempt (0: the step's nominal increment)
-  int easy = 0;              // easy converged attempts since dt last changed
+  // Secant predictor (engine/step_driver.cpp): the rate of the last converged attempt,
+  // (q_n - q_{n-1}) / (t_n - t_{n-1}), mm (or director units) per unit pseudo-time, per DOF;
+  // it serves the attempts of `rateStep` only (-1: none yet).
+  Eigen::VectorXd rate;
+  int rateStep = -1;
+  bool predict = false;      // whether the attempt in progress starts from the predictor
 };
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }
@@ -108,6 +113,10 @@ void assembleResidual(WorldState& w, double t);
 // The checkpoint of the last converged state (World::saveCheckpoint, engine/checkpoint.cpp).
 void saveCheckpoint(const WorldState& w, std::ostream& out);
 void restoreCheckpoint(WorldState& w, std::istream& in);
+
+// The start of an attempt from the converged state at w.time to tTry: the free DOFs moved by the
+// secant predictor where the step has it, the held DOFs to their targets (engine/step_driver.cpp).
+void startAttempt(WorldState& w, double tTry);
 
 // Solves the next increment with cutbacks (engine/step_driver.cpp).
 StepReport advance(WorldState& w);

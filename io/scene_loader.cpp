@@ -127,8 +127,8 @@ GroupDef readGroup(const Json& j, const std::string& path) {
 StepDef readStep(const Json& j, const std::string& path) {
   const Fields f(j, path,
                  {"name", "end_time", "increments", "max_iterations", "force_tolerance",
-                  "increment_tolerance", "max_cutbacks", "line_search", "damping", "output_every",
-                  "forced_normals", "friction_factor"});
+                  "increment_tolerance", "max_cutbacks", "line_search", "predictor", "damping",
+                  "output_every", "forced_normals", "friction_factor"});
   StepDef s;
   s.name = f.string("name", s.name);
   s.endTime = f.number("end_time", s.endTime);
@@ -138,6 +138,7 @@ StepDef readStep(const Json& j, const std::string& path) {
   s.incrementTolerance = f.number("increment_tolerance", s.incrementTolerance);
   s.maxCutbacks = f.integer("max_cutbacks", s.maxCutbacks);
   s.lineSearch = f.boolean("line_search", s.lineSearch);
+  s.predictor = f.boolean("predictor", s.predictor);
   s.damping = f.number("damping", s.damping);
   s.outputEvery = f.integer("output_every", s.outputEvery);
   s.frictionFactor = f.number("friction_factor", s.frictionFactor);

@@ -252,6 +252,8 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
                                            "cutbacks",
                                            "sub_increments",
                                            "smallest_increment",
+                                           "predicted",
+                                           "predictor_retries",
                                            "residual",
                                            "wall_s",
                                            "reaction.beam.start.fx",
