@@ -204,15 +204,19 @@ std::string solverLine(const SceneDef& s) {
   const SolverDef& v = s.solver;
   std::string strategy = strategyName(v.strategy);
   if (v.strategy == LinearStrategy::Auto)
-    strategy += format(" (direct below %d free equations, mumps from there)",
-                       int(kMumpsFromEquations));
+    strategy += format(" (direct below %d free equations, from there mumps, or schwarz where "
+                       "MUMPS's analysis estimates >= %g flops per non-zero)",
+                       int(kMumpsFromEquations), kSchwarzFromFlopsPerEntry);
   std::string out = format("  linear solver: %s, ordering %s", strategy.c_str(),
                            v.ordering == Ordering::Auto  ? "auto"
                            : v.ordering == Ordering::Amd ? "amd"
                                                          : "metis");
   if (v.krylov.blrTolerance > 0) out += format(", block low-rank %g", v.krylov.blrTolerance);
-  const bool krylov = v.strategy == LinearStrategy::Krylov ||
-                      v.strategy == LinearStrategy::KrylovLu || v.krylov.blrTolerance > 0;
+  const bool schwarz = v.strategy == LinearStrategy::Schwarz || v.strategy == LinearStrategy::Auto;
+  if (schwarz)
+    out += format(", schwarz's coarse level of %d segments per fibre", v.krylov.coarseSegments);
+  const bool krylov = v.strategy == LinearStrategy::Krylov || v.strategy == LinearStrategy::KrylovLu ||
+                      schwarz || v.krylov.blrTolerance > 0;
   if (krylov)
     out += format(", GMRES to %g (restart %d, <= %d iterations)", v.krylov.tolerance,
                   v.krylov.restart, v.krylov.maxIterations);

@@ -12,6 +12,9 @@
 //       inside GMRES (mumps-blr alone: 1e-6); mumps-full, mumps given a symmetric K in full,
 //       LU instead of LDL^T)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
+//       [--coarse-segments 8] (schwarz)
+//       [--scene FILE [--checkpoint FILE]] (a scene file, from a stopped run's state, instead of
+//       a built-in case)
 //       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
 //
 // Matrices: the tangent Newton assembled after --warm iterations of the first increment (see
@@ -58,6 +61,7 @@ struct Options : TangentCase {
   int repeats = 3;
   int newton = 0;
   int refactorAbove = KrylovSettings{}.refactorAbove;
+  int coarseSegments = KrylovSettings{}.coarseSegments;
   int maxIterations = 30;  // Newton iterations per attempt
   int cutbacks = 8;        // per increment
   std::vector<std::string> newtonStrategies{"krylov", "umfpack"};
@@ -105,12 +109,14 @@ void matrices(const Options& o, std::FILE* csv) {
 // The first o.newton increments of the scene with each strategy.
 void newton(const Options& o) {
   std::printf("Newton: %d increment(s), %s\n", o.newton, o.friction ? "friction 0.1" : "frictionless");
+  Eigen::VectorXd firstQ;  // the final state of the first strategy run, to compare the others with
   for (int threads : o.threads)
     for (const std::string& name : o.newtonStrategies) {
       bench::setBlasThreads(threads);
       WorldState w;
       w.scene = sceneOf(o, 5);
       w.scene.solver.krylov.refactorAbove = o.refactorAbove;
+      w.scene.solver.krylov.coarseSegments = o.coarseSegments;
       for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
       w.def.threads = threads;
       LinearStrategy s;
@@ -125,6 +131,10 @@ void newton(const Options& o) {
         last = std::chrono::steady_clock::now();
       };
       buildWorld(w);
+      if (!o.checkpoint.empty()) {
+        std::ifstream in(o.checkpoint, std::ios::binary);
+        restoreCheckpoint(w, in);
+      }
       int iterations = 0;
       double wall = 0, assemble = 0, factorise = 0, solve = 0;
       for (int inc = 1; inc <= o.newton; ++inc) {
@@ -132,11 +142,13 @@ void newton(const Options& o) {
         const double t = bench::seconds([&] { rep = advance(w); });
         const LinearSolveStats& st = w.solver.stats();
         std::printf("  thr %d %-8s incr %d: %-9s %3d it (%d cut) %8.2f s  asm %.2f fac %.2f sol %.2f | "
-                    "factorisations %d refactor %d reuses %d krylov it %d (max %d) fail %d shift %.0e\n",
+                    "factorisations %d refactor %d reuses %d krylov it %d (max %d) fail %d fallbacks %d shift %.0e "
+                    "flops/nnz %.3g schwarz %d\n",
                     threads, name.c_str(), inc, rep.status == StepStatus::Converged ? "converged" : "FAILED",
                     rep.totalIterations, rep.cutbacks, t, rep.timings.assemble, rep.timings.factorise,
                     rep.timings.solve, st.factorisations, st.refactorisations, st.reuses,
-                    st.krylovIterations, st.maxKrylovIterations, st.krylovFailures, st.shift);
+                    st.krylovIterations, st.maxKrylovIterations, st.krylovFailures, st.fallbacks, st.shift,
+                    st.flopsPerEntry, st.schwarzChoices);
         iterations += rep.totalIterations;
         wall += t, assemble += rep.timings.assemble, factorise += rep.timings.factorise, solve += rep.timings.solve;
         if (rep.status != StepStatus::Converged) break;
@@ -144,6 +156,10 @@ void newton(const Options& o) {
       std::printf("  thr %d %-8s total %d it, %.2f s: per iteration %.3f s (assemble %.3f, factorise %.3f, "
                   "solve %.3f)\n", threads, name.c_str(), iterations, wall, wall / iterations,
                   assemble / iterations, factorise / iterations, solve / iterations);
+      if (firstQ.size() == 0) firstQ = w.fibres.q;
+      else if (firstQ.size() == w.fibres.q.size())
+        std::printf("  max |q - q of the first strategy| = %.2e\n",
+                    (w.fibres.q - firstQ).lpNorm<Eigen::Infinity>());
     }
 }
 
@@ -162,6 +178,7 @@ int main(int argc, char** argv) {
     else if (k == "--csv") o.csv = v;
     else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
     else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
+    else if (k == "--coarse-segments") o.coarseSegments = std::stoi(v);
     else if (k == "--max-iterations") o.maxIterations = std::stoi(v);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);

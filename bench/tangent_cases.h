@@ -9,6 +9,7 @@
 #include "bench/contact_scenes.h"
 #include "bench/paper_scenes.h"
 #include "engine/world_state.h"
+#include "io/scene_loader.h"
 
 #include <Eigen/CholmodSupport>
 #include <cmath>
@@ -26,6 +27,9 @@ struct TangentCase {
   bool friction = true;         // mu 0.1, or frictionless
   int warm = 3;                 // Newton iterations before the matrices are taken
   std::string warmStrategy = "umfpack";
+  bool grip = false;            // yarns: the held ends also hold the director g1 (no free spin)
+  std::string scene;            // a scene file instead of a built-in case ("--scene FILE")
+  std::string checkpoint;       // its run's resume_state.bin: the tangents from that state on
 };
 
 inline std::vector<std::string> split(const std::string& s) {
@@ -42,14 +46,23 @@ inline bool parseCaseOption(TangentCase& c, const std::string& k, const std::str
   else if (k == "--friction") c.friction = v == "on";
   else if (k == "--warm") c.warm = std::stoi(v);
   else if (k == "--warm-strategy") c.warmStrategy = v;
+  else if (k == "--grip") c.grip = v == "on";
+  else if (k == "--scene") c.scene = c.name = v;
+  else if (k == "--checkpoint") c.checkpoint = v;
   else return false;
   return true;
 }
 
 inline SceneDef sceneOf(const TangentCase& c, int increments) {
+  if (!c.scene.empty()) return loadScene(c.scene);
   const double mu = c.friction ? 0.1 : 0;
-  if (c.name == "yarn61") return scenes::yarnScene(61, mu, 0.002, increments);
-  if (c.name == "yarn250") return scenes::yarnScene(250, mu, 0.002, increments);
+  auto grip = [&](SceneDef s) {
+    if (c.grip)
+      for (BcDef& b : s.bcs) b.dofs[G1X] = b.dofs[G1Y] = b.dofs[G1Z] = true;
+    return s;
+  };
+  if (c.name == "yarn61") return grip(scenes::yarnScene(61, mu, 0.002, increments));
+  if (c.name == "yarn250") return grip(scenes::yarnScene(250, mu, 0.002, increments));
   if (c.name == "fabric480") return scenes::fabricScene(mu, increments);
   // smaller sizes for the rule of `auto`: squeezed bundles (bench/contact_scenes.h)
   if (c.name == "bundle7") return scenes::bundle(1, 10, 0.01, 5e-4, mu);
@@ -195,6 +208,12 @@ inline std::unique_ptr<WorldState> warmWorld(
     w->def.progress = [&ws = *w, onIteration](const Progress&) { onIteration(ws.system); };
   for (StepDef& st : w->scene.steps) st.maxIterations = std::max(c.warm, 1), st.maxCutbacks = 0;
   buildWorld(*w);
+  if (!c.checkpoint.empty()) {
+    std::ifstream in(c.checkpoint, std::ios::binary);
+    restoreCheckpoint(*w, in);
+    std::printf("checkpoint %s: t = %g, step %d, increment %d\n", c.checkpoint.c_str(), w->time,
+                w->step + 1, w->increment);
+  }
   const double t = seconds([&] {
     if (c.warm == 0) {
       runStage(*w, w->pipeline.detect, 0);

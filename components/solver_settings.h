@@ -6,7 +6,7 @@
 namespace fibra {
 
 enum class LuSolver { Umfpack, EigenSparseLu };
-enum class LinearStrategy { Auto, Direct, Umfpack, Krylov, KrylovLu, Mumps };
+enum class LinearStrategy { Auto, Direct, Umfpack, Krylov, KrylovLu, Mumps, Schwarz };
 // Fill-reducing ordering of the sparse factorisations. Auto: UMFPACK by METIS nested dissection
 // from kMetisFromEquations (systems/linear_solver.h) and by AMD/COLAMD below; CHOLMOD by its own
 // default (AMD, and METIS as well when AMD's fill is heavy, keeping the better). Amd, Metis:
@@ -21,6 +21,8 @@ struct KrylovSettings {
   int refactorAbove = 40;    // a solve needing more iterations: refactorise at the next call
   double blrTolerance = 0;   // Mumps strategy: 0 exact LU; > 0 a block low-rank factor at this
                              // relative accuracy, the preconditioner of GMRES (dimensionless)
+  int coarseSegments = 8;    // Schwarz strategy: hat functions per fibre of its coarse level
+                             // over this many pieces of the node index (>= 1)
 };
 
 }  // namespace fibra

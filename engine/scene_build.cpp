@@ -233,6 +233,7 @@ void buildWorld(WorldState& w) {
   w.solver.setKrylov(w.scene.solver.krylov);
   w.solver.setOrdering(w.scene.solver.ordering);
   w.solver.setTrace(w.def.trace);
+  w.solver.setFibres(&w.fibres);
   if (w.def.arena) {
     w.arena = w.def.arena;
   } else {

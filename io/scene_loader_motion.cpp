@@ -222,12 +222,14 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
 
 SolverDef readSolver(const Json& j, const std::string& path) {
   const Fields f(j, path, {"strategy", "ordering", "krylov_tolerance", "krylov_restart",
-                           "krylov_max_iterations", "refactor_above", "blr_tolerance"});
+                           "krylov_max_iterations", "refactor_above", "blr_tolerance",
+                           "coarse_segments"});
   SolverDef s;
   s.strategy = f.choice("strategy",
                         {{"auto", LinearStrategy::Auto}, {"direct", LinearStrategy::Direct},
                          {"umfpack", LinearStrategy::Umfpack}, {"krylov", LinearStrategy::Krylov},
-                         {"krylov-lu", LinearStrategy::KrylovLu}, {"mumps", LinearStrategy::Mumps}},
+                         {"krylov-lu", LinearStrategy::KrylovLu}, {"mumps", LinearStrategy::Mumps},
+                         {"schwarz", LinearStrategy::Schwarz}},
                         s.strategy);
   s.ordering = f.choice("ordering",
                         {{"auto", Ordering::Auto}, {"amd", Ordering::Amd}, {"metis", Ordering::Metis}},
@@ -237,6 +239,7 @@ SolverDef readSolver(const Json& j, const std::string& path) {
   s.krylov.maxIterations = f.integer("krylov_max_iterations", s.krylov.maxIterations);
   s.krylov.refactorAbove = f.integer("refactor_above", s.krylov.refactorAbove);
   s.krylov.blrTolerance = f.number("blr_tolerance", s.krylov.blrTolerance);
+  s.krylov.coarseSegments = f.integer("coarse_segments", s.krylov.coarseSegments);
   return s;
 }
 

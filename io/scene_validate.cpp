@@ -506,6 +506,13 @@ void validateSolver(const SolverDef& s) {
          "applies to the strategies mumps and auto (mumps from " +
              std::to_string(kMumpsFromEquations) + " equations), not to '" +
              strategyName(s.strategy) + "'");
+  if (!(s.krylov.coarseSegments >= 1 && s.krylov.coarseSegments <= 1000))
+    fail("solver.coarse_segments", "must be in [1, 1000], got " + std::to_string(s.krylov.coarseSegments));
+  // Only the Schwarz strategy has a coarse level (auto takes it on a heavy fill).
+  if (s.krylov.coarseSegments != KrylovSettings{}.coarseSegments &&
+      s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
+    fail("solver.coarse_segments", std::string("applies to the strategies schwarz and auto, not to '") +
+                                       strategyName(s.strategy) + "'");
 }
 
 // Plots: the columns exist only once the World is built (io/plot_outputs.h checks them).

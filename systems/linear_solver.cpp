@@ -2,6 +2,7 @@
 
 #include "systems/krylov.h"
 #include "systems/mumps_solver.h"
+#include "systems/schwarz_preconditioner.h"
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseLU>
@@ -18,7 +19,7 @@ double seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
 }
 
-enum class Active { None, Llt, Ldlt, Lu, Umfpack, Krylov, Mumps, MumpsBlr };
+enum class Active { None, Llt, Ldlt, Lu, Umfpack, Krylov, Mumps, MumpsBlr, Schwarz };
 
 // The upper triangle of S = (K + K^T) / 2 (K full, CSC); for a symmetric ls, K itself.
 void symmetricPart(const LinearSystem& ls, SparseMatrix& S) {
@@ -79,13 +80,15 @@ const char* strategyName(LinearStrategy s) {
     case LinearStrategy::Krylov: return "krylov";
     case LinearStrategy::KrylovLu: return "krylov-lu";
     case LinearStrategy::Mumps: return "mumps";
+    case LinearStrategy::Schwarz: return "schwarz";
   }
   return "?";
 }
 
 bool parseStrategy(const std::string& name, LinearStrategy& s) {
   for (LinearStrategy c : {LinearStrategy::Auto, LinearStrategy::Direct, LinearStrategy::Umfpack,
-                           LinearStrategy::Krylov, LinearStrategy::KrylovLu, LinearStrategy::Mumps})
+                           LinearStrategy::Krylov, LinearStrategy::KrylovLu, LinearStrategy::Mumps,
+                           LinearStrategy::Schwarz})
     if (name == strategyName(c)) {
       s = c;
       return true;
@@ -100,6 +103,9 @@ struct LinearSolver::Impl {
   Eigen::SparseLU<SparseMatrix> sparseLu;
   Preconditioner pre;
   MumpsFactor mumps;
+  SchwarzPreconditioner schwarz;
+  const FibreStore* fibres = nullptr;    // Schwarz: the fibres it follows
+  double fill = 0;                       // MUMPS's estimated flops per non-zero of K, last analysis
   GmresWorkspace workspace;
   KrylovSettings krylov;
   LuSolver luKind = LuSolver::EigenSparseLu;
@@ -158,6 +164,11 @@ struct LinearSolver::Impl {
                         const LinearOperator& M);
   bool mumpsFactorise(const LinearSystem& ls, std::string& message);
   void mumpsSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  bool schwarzFactorise(const LinearSystem& ls, std::string& message);
+  void schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  bool exactMumps(const LinearSystem& ls, std::string& message);
+  bool mumpsAnalyse(const LinearSystem& ls, std::string& message);
+  bool schwarzPays(const LinearSystem& ls);
 };
 
 bool LinearSolver::Impl::direct(const LinearSystem& ls, std::string& message) {
@@ -315,16 +326,7 @@ void LinearSolver::Impl::krylovSolve(const Eigen::VectorXd& b, Eigen::VectorXd& 
 bool LinearSolver::Impl::mumpsFactorise(const LinearSystem& ls, std::string& message) {
   system = &ls;
   const Index n = ls.freeCount;
-  const MumpsAnalysis how{.symmetric = ls.symmetric, .ordering = ordering,
-                          .metisAuto = ordering == Ordering::Auto && n >= kMumpsMetisFromEquations,
-                          .blrTolerance = krylov.blrTolerance, .revision = ls.revision};
-  if (mumps.needsAnalysis(how)) {
-    const auto t0 = std::chrono::steady_clock::now();
-    const bool ok = mumps.analyse(ls.K, how, message);
-    stats.analyse += seconds(t0);
-    ++stats.analyses;
-    if (!ok) return false;
-  }
+  if (!mumpsAnalyse(ls, message)) return false;
   Span span(trace, "factorise", "solver");
   span.items(n);
   const auto t0 = std::chrono::steady_clock::now();
@@ -334,6 +336,34 @@ bool LinearSolver::Impl::mumpsFactorise(const LinearSystem& ls, std::string& mes
   if (!ok) return false;
   active = krylov.blrTolerance > 0 ? Active::MumpsBlr : Active::Mumps;
   return true;
+}
+
+// MUMPS's analysis of ls.K's pattern, when the pattern revision (or symmetry, ordering, BLR)
+// changed since the last one; false with MUMPS's message.
+bool LinearSolver::Impl::mumpsAnalyse(const LinearSystem& ls, std::string& message) {
+  const Index n = ls.freeCount;
+  const MumpsAnalysis how{.symmetric = ls.symmetric, .ordering = ordering,
+                          .metisAuto = ordering == Ordering::Auto && n >= kMumpsMetisFromEquations,
+                          .blrTolerance = krylov.blrTolerance, .revision = ls.revision};
+  if (mumps.needsAnalysis(how)) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = mumps.analyse(ls.K, how, message);
+    stats.analyse += seconds(t0);
+    ++stats.analyses;
+    fill = ok ? mumps.estimatedFlops() / double(std::max<Index>(ls.K.nonZeros(), 1)) : 0;
+    if (!ok) return false;
+  }
+  stats.flopsPerEntry = fill;
+  return true;
+}
+
+// Auto's choice between MUMPS and Schwarz (from kMumpsFromEquations equations) by MUMPS's
+// analysis of this pattern (autoTakesSchwarz); false also when the analysis fails
+// (mumpsFactorise then reports it).
+bool LinearSolver::Impl::schwarzPays(const LinearSystem& ls) {
+  std::string message;
+  if (!fibres || !mumpsAnalyse(ls, message)) return false;
+  return autoTakesSchwarz(fill, true);
 }
 
 // Exact factor: x = (LU)^-1 b. BLR factor: GMRES on the true K to krylov.tolerance, the factor
@@ -349,6 +379,75 @@ void LinearSolver::Impl::mumpsSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x
     mumps.solve(y);
   };
   if (!gmresOnce(b, x, krylov.maxIterations, M).converged) ++stats.krylovFailures;
+}
+
+// MUMPS's exact factor of ls whatever blrTolerance says: the Schwarz strategy's fallback.
+bool LinearSolver::Impl::exactMumps(const LinearSystem& ls, std::string& message) {
+  const double blr = krylov.blrTolerance;
+  krylov.blrTolerance = 0;
+  const bool ok = mumpsFactorise(ls, message);
+  krylov.blrTolerance = blr;
+  return ok;
+}
+
+// Builds the two-level preconditioner from ls.K (every call: docs/RESULTS.md "Fibre-block
+// preconditioners"); one that cannot be built falls back to MUMPS's exact LU for this call.
+bool LinearSolver::Impl::schwarzFactorise(const LinearSystem& ls, std::string& message) {
+  system = &ls;
+  if (!fibres) {
+    message = "Schwarz: no fibres given to the linear solver (setFibres)";
+    return false;
+  }
+  Span span(trace, "factorise", "solver");
+  span.items(ls.freeCount);
+  const auto t0 = std::chrono::steady_clock::now();
+  std::string why;
+  const bool built = schwarz.build(ls, *fibres, krylov.coarseSegments, why);
+  stats.factorise += seconds(t0);
+  ++stats.factorisations;
+  if (built) {
+    active = Active::Schwarz;
+    return true;
+  }
+  ++stats.fallbacks;
+  return exactMumps(ls, message);
+}
+
+// GMRES on the true K preconditioned by the Schwarz levels; a solve that misses the tolerance is
+// redone by MUMPS's exact LU of the same K.
+void LinearSolver::Impl::schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  const LinearOperator A = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) { schwarz.product(v, y); };
+  const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) { schwarz.apply(v, y); };
+  GmresSettings g;
+  g.tolerance = krylov.tolerance;
+  g.restart = krylov.restart;
+  g.maxIterations = krylov.maxIterations;
+  x.setZero(b.size());
+  GmresResult r;
+  {
+    Span span(trace, "krylov", "solver");
+    r = gmres(A, M, b, x, g, workspace);
+    span.items(r.iterations);
+  }
+  stats.krylovIterations += r.iterations;
+  stats.maxKrylovIterations = std::max(stats.maxKrylovIterations, r.iterations);
+  if (r.converged) return;
+  ++stats.krylovFailures;
+  ++stats.fallbacks;
+  std::string message;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool ok = exactMumps(*system, message);
+  stats.factorise += seconds(t0);
+  if (!ok) {
+    x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
+  x = b;
+  mumps.solve(x);
+}
+
+bool autoTakesSchwarz(double flopsPerEntry, bool haveFibres) {
+  return haveFibres && flopsPerEntry >= kSchwarzFromFlopsPerEntry;
 }
 
 LinearSolver::LinearSolver() : impl_(std::make_unique<Impl>()) {}
@@ -369,6 +468,7 @@ void LinearSolver::setOrdering(Ordering o) {
 }
 void LinearSolver::setBlasThreads(int threads) { impl_->blasThreads = threads; }
 void LinearSolver::setTrace(Trace* trace) { impl_->trace = trace; }
+void LinearSolver::setFibres(const FibreStore* fibres) { impl_->fibres = fibres; }
 LinearStrategy LinearSolver::strategy() const { return impl_->strategy; }
 
 LinearStrategy LinearSolver::resolved(Index n) const {
@@ -386,13 +486,18 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
     case LinearStrategy::Mumps:
       // auto: a tangent MUMPS cannot factorise (reported singular, out of memory) falls back to
       // the direct path (as UMFPACK's singular reports on the 250-fibre yarn did,
-      // docs/RESULTS.md).
+      // docs/RESULTS.md). With a heavy fill auto takes Schwarz instead (schwarzPays).
+      if (automatic && m.schwarzPays(ls)) {
+        ++m.stats.schwarzChoices;
+        return m.schwarzFactorise(ls, message);
+      }
       if (m.mumpsFactorise(ls, message) || !automatic) return m.active != Active::None;
       ++m.stats.fallbacks;
       message.clear();
       return m.direct(ls, message);
     case LinearStrategy::Krylov: return m.krylovFactorise(ls, message, false);
     case LinearStrategy::KrylovLu: return m.krylovFactorise(ls, message, true);
+    case LinearStrategy::Schwarz: return m.schwarzFactorise(ls, message);
     default: return m.direct(ls, message);
   }
 }
@@ -416,6 +521,7 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     case Active::Krylov: m.krylovSolve(b, x); break;
     case Active::Mumps:
     case Active::MumpsBlr: m.mumpsSolve(b, x); break;
+    case Active::Schwarz: m.schwarzSolve(b, x); break;
     case Active::None: x.setConstant(b.size(), std::numeric_limits<double>::quiet_NaN()); break;
   }
   m.stats.solve += seconds(t0);

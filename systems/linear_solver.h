@@ -24,10 +24,22 @@
 //   right-preconditioned by it, to KrylovSettings::tolerance (iterations in krylovIterations;
 //   refactorAbove does not apply: the factor is fresh every call). MUMPS errors (singular, out
 //   of memory after one retry with more workspace) return false with MUMPS's code.
+// - Schwarz: GMRES on the true K, right-preconditioned by the two-level fibre preconditioner of
+//   systems/schwarz_preconditioner.h (banded LU per fibre, a coarse level of per-fibre segment
+//   translations and rotations, KrylovSettings::coarseSegments), built afresh at every call to
+//   factorise: on the contact tangents neither a factor nor this preconditioner survives a
+//   Newton iteration (docs/RESULTS.md "Fibre-block preconditioners"). Needs the fibres
+//   (setFibres). A preconditioner that cannot be built (a singular block) or a GMRES that misses
+//   the tolerance within maxIterations falls back to MUMPS's exact LU for that call (counted in
+//   fallbacks; the failed GMRES in krylovFailures).
 // - Auto: Direct below kMumpsFromEquations equations, Mumps from there (measured rule:
 //   docs/RESULTS.md "MUMPS inside fibra"; on the contact tangents measured neither Krylov
 //   preconditioner pays); a tangent MUMPS fails on goes to Direct for that call (counted in
-//   fallbacks). Auto's Mumps follows KrylovSettings::blrTolerance (0 by default: exact).
+//   fallbacks). Auto's Mumps follows KrylovSettings::blrTolerance (0 by default: exact). From
+//   kMumpsFromEquations, a pattern whose MUMPS analysis estimates kSchwarzFromFlopsPerEntry
+//   factorisation flops per non-zero of K or more (packed yarns and bundles; not fabrics,
+//   whose fill is light) goes to Schwarz instead (autoTakesSchwarz; counted in
+//   schwarzChoices), decided again at each new pattern.
 // Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
 // METIS nested dissection from kMetisFromEquations equations and by AMD below, MUMPS's by METIS
 // from kMumpsMetisFromEquations and by AMD below, and leaves CHOLMOD its default;
@@ -44,6 +56,7 @@
 // "krylov" (items: GMRES iterations), category "solver".
 #pragma once
 
+#include "components/fibres.h"
 #include "components/linear_system.h"
 #include "components/solver_settings.h"
 #include "core/trace.h"
@@ -66,6 +79,10 @@ struct LinearSolveStats {
   int shifted = 0;             // factorisations that needed sigma > 0
   int krylovFailures = 0;      // solves that missed the tolerance even with a fresh factor
   double shift = 0;            // sigma of the last factorisation
+  // MUMPS analyses (Mumps, Schwarz's fallback, Auto)
+  double flopsPerEntry = 0;    // the last analysis's estimated factorisation flops (RINFOG(1))
+                               // per non-zero of K (dimensionless)
+  int schwarzChoices = 0;      // Auto: calls to factorise that took Schwarz by the fill rule
 };
 
 
@@ -77,6 +94,14 @@ struct LinearSolveStats {
 // 0.26 s with friction, 0.16 against 0.44 s frictionless), but smaller systems were not
 // measured and Direct stays there).
 inline constexpr Index kMumpsFromEquations = 7000;
+// Auto's rule from kMumpsFromEquations: Schwarz instead of MUMPS when MUMPS's analysis estimates
+// at least this many factorisation flops per non-zero of K (dimensionless; measured,
+// docs/RESULTS.md "Fibre-block preconditioners").
+inline constexpr double kSchwarzFromFlopsPerEntry = 2000;
+// Auto's choice from kMumpsFromEquations: Schwarz (true) or MUMPS, for a K whose MUMPS analysis
+// estimates flopsPerEntry factorisation flops per non-zero, haveFibres when the solver knows
+// the fibres (setFibres).
+bool autoTakesSchwarz(double flopsPerEntry, bool haveFibres);
 // Auto ordering's rule: UMFPACK by METIS from this many equations (measured, docs/RESULTS.md
 // "Orderings": on frictional yarn tangents METIS factorises 1.25x faster than AMD at 16.8k
 // equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
@@ -86,7 +111,7 @@ inline constexpr Index kMetisFromEquations = 12000;
 inline constexpr Index kMumpsMetisFromEquations = 12000;
 
 // The strategy's name as the scene file spells it ("auto", "direct", "umfpack", "krylov",
-// "krylov-lu", "mumps").
+// "krylov-lu", "mumps", "schwarz").
 const char* strategyName(LinearStrategy s);
 // Parses a name of strategyName; false when it is none.
 bool parseStrategy(const std::string& name, LinearStrategy& s);
@@ -113,6 +138,8 @@ class LinearSolver {
   void setOrdering(Ordering o);      // default Auto; takes effect at the next analysis
   void setBlasThreads(int threads);  // > 0: OpenBLAS threads set before each factorisation
   void setTrace(Trace* trace);       // spans recorded when set
+  // The fibres the Schwarz strategy follows (node ranges, current state); must stay alive.
+  void setFibres(const FibreStore* fibres);
   LinearStrategy strategy() const;   // as set (Auto stays Auto)
   // The strategy used for a system of n equations (Auto resolved).
   LinearStrategy resolved(Index n) const;

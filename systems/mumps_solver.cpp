@@ -198,6 +198,7 @@ void MumpsFactor::solve(Eigen::VectorXd& x) {
 }
 
 int MumpsFactor::orderingUsed() const { return infog(impl_->id, 7); }
+double MumpsFactor::estimatedFlops() const { return impl_->alive ? double(impl_->id.rinfog[0]) : 0.0; }
 
 }  // namespace fibra
 

@@ -66,6 +66,9 @@ class MumpsFactor {
   // MUMPS's INFOG(7): the ordering it used in the last analysis (0 AMD, 1 given, 2 AMF,
   // 3 SCOTCH, 4 PORD, 5 METIS, 6 QAMD).
   int orderingUsed() const;
+  // MUMPS's RINFOG(1): the floating-point operations its last analysis estimates the
+  // elimination (the numeric factorisation) will take; 0 before any analysis.
+  double estimatedFlops() const;
 
  private:
   struct Impl;

@@ -186,8 +186,10 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
                       "forces on material particles (the paper's)\n") != std::string::npos);
   CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, GMRES to "
                       "1e-08 (restart 40, <= 200 iterations)\n") != std::string::npos);
-  CHECK(r.output.find("  linear solver: auto (direct below 7000 free equations, mumps from "
-                      "there), ordering auto\n") != std::string::npos);
+  CHECK(r.output.find("  linear solver: auto (direct below 7000 free equations, from there mumps, "
+                      "or schwarz where MUMPS's analysis estimates >= 2000 flops per non-zero), "
+                      "ordering auto, schwarz's coarse level of 8 segments per fibre, GMRES to 1e-08 "
+                      "(restart 40, <= 200 iterations)\n") != std::string::npos);
   CHECK(r.output.find("crossings follow") == std::string::npos);
   CHECK(r.output.find(", frictionless forces on facing particles\n") != std::string::npos);  // default
   CHECK(c.output.find("friction tangent symmetrised, element placement paper, normals updated by "

@@ -9,6 +9,8 @@
 // GMRES, reports a singular tangent with its error code, and repeats itself bitwise.
 #include "bench/contact_scenes.h"
 #include "engine/world_state.h"
+#include "systems/krylov.h"
+#include "systems/schwarz_preconditioner.h"
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
 
@@ -16,13 +18,15 @@
 
 #include <random>
 
+#include <tbb/task_arena.h>
+
 using namespace fibra;
 
 namespace {
 
 constexpr LinearStrategy kStrategies[] = {LinearStrategy::Direct, LinearStrategy::Umfpack,
                                           LinearStrategy::Krylov, LinearStrategy::KrylovLu,
-                                          LinearStrategy::Mumps};
+                                          LinearStrategy::Mumps, LinearStrategy::Schwarz};
 
 // The largest difference between two states in what the mechanics fixes: the centrelines x0
 // (mm), each section's metric g_a . g_b (stretch and shear in its plane, -) and its tilt against
@@ -70,10 +74,11 @@ double residualOf(const LinearSystem& ls, const Eigen::VectorXd& x, const Eigen:
   return (Kx - b).norm() / b.norm();
 }
 
-// Solves ls with strategy s; returns |K x - b| / |b|.
+// Solves ls with strategy s (Schwarz: following `fibres`); returns |K x - b| / |b|.
 double solveWith(LinearStrategy s, const LinearSystem& ls, const Eigen::VectorXd& b,
-                 LinearSolver& solver) {
+                 LinearSolver& solver, const FibreStore* fibres = nullptr) {
   solver.setStrategy(s);
+  solver.setFibres(fibres);
   std::string message;
   REQUIRE(solver.factorise(ls, message));
   Eigen::VectorXd x;
@@ -99,10 +104,14 @@ TEST_CASE("every linear strategy solves a frictional and a frictionless contact 
         CAPTURE(int(o));
         LinearSolver solver;
         solver.setOrdering(o);
-        const double res = solveWith(s, ls, b, solver);
+        const double res = solveWith(s, ls, b, solver, &w->fibres);
         // Krylov: its own tolerance; the direct factorisations: their round-off, well below it.
         CHECK(res <= KrylovSettings{}.tolerance);
         if (s == LinearStrategy::Krylov) CHECK(solver.stats().krylovIterations > 0);
+        if (s == LinearStrategy::Schwarz) {  // by its own preconditioner, not the fallback
+          CHECK(solver.stats().krylovIterations > 1);
+          CHECK(solver.stats().fallbacks == 0);
+        }
         if (s == LinearStrategy::Mumps) CHECK(solver.stats().krylovIterations == 0);
       }
     // MUMPS with a block low-rank factor (a coarse 1e-2, so that it is approximate): GMRES on
@@ -157,6 +166,30 @@ TEST_CASE("auto picks the direct path below kMumpsFromEquations and MUMPS from t
   CHECK(solver.resolved(kMumpsFromEquations) == LinearStrategy::Mumps);
   solver.setStrategy(LinearStrategy::Umfpack);
   CHECK(solver.resolved(kMumpsFromEquations) == LinearStrategy::Umfpack);
+  // From there, Schwarz on a heavy fill when the fibres are known.
+  CHECK(autoTakesSchwarz(kSchwarzFromFlopsPerEntry, true));
+  CHECK_FALSE(autoTakesSchwarz(0.99 * kSchwarzFromFlopsPerEntry, true));
+  CHECK_FALSE(autoTakesSchwarz(10 * kSchwarzFromFlopsPerEntry, false));
+}
+
+TEST_CASE("the fill measure of auto's rule: MUMPS's flops per non-zero of a dense K are 2n/3") {
+  // A dense n x n LU costs sum over the pivots k of 2 (n - k)^2 + (n - k) ~ 2n^3/3 flops; per
+  // non-zero (n^2), 2n/3: independent of MUMPS's own count.
+  const int n = 90;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Random(n, n);
+  A.diagonal().array() += 2.0 * n;
+  LinearSystem ls;
+  ls.freeCount = n;
+  ls.symmetric = false;
+  ls.K = A.sparseView();
+  LinearSolver solver;
+  solver.setStrategy(LinearStrategy::Mumps);
+  std::string message;
+  REQUIRE(solver.factorise(ls, message));
+  double exact = 0;
+  for (int k = 1; k <= n; ++k) exact += 2.0 * (n - k) * (n - k) + (n - k);
+  CHECK(solver.stats().flopsPerEntry == doctest::Approx(exact / (n * n)).epsilon(0.05));
+  CHECK(solver.stats().schwarzChoices == 0);
 }
 
 TEST_CASE("the MUMPS strategy reports a singular tangent with MUMPS's error code") {
@@ -328,7 +361,7 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   };
   CHECK(error(R"({"strategy": "cg"})") ==
         "s.json: solver.strategy: unknown value \"cg\" (expected one of: auto, direct, umfpack, "
-        "krylov, krylov-lu, mumps)");
+        "krylov, krylov-lu, mumps, schwarz)");
   CHECK(error(R"({"ordering": "colamd"})") ==
         "s.json: solver.ordering: unknown value \"colamd\" (expected one of: auto, amd, metis)");
   CHECK(error(R"({"krylov_tolerance": 0})") == "s.json: solver.krylov_tolerance: must be in (0, 1), got 0");
@@ -339,6 +372,60 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(error(R"({"strategy": "krylov", "blr_tolerance": 1e-6})") ==
         "s.json: solver.blr_tolerance: applies to the strategies mumps and auto (mumps from 7000 "
         "equations), not to 'krylov'");
+  const SceneDef schwarz =
+      loadSceneFromString(scene(R"({"strategy": "schwarz", "coarse_segments": 4})"), "s.json");
+  CHECK(schwarz.solver.strategy == LinearStrategy::Schwarz);
+  CHECK(schwarz.solver.krylov.coarseSegments == 4);
+  CHECK(error(R"({"strategy": "schwarz", "coarse_segments": 0})") ==
+        "s.json: solver.coarse_segments: must be in [1, 1000], got 0");
+  CHECK(error(R"({"strategy": "mumps", "coarse_segments": 4})") ==
+        "s.json: solver.coarse_segments: applies to the strategies schwarz and auto, not to 'mumps'");
+  CHECK(loadSceneFromString(scene(R"({"coarse_segments": 15})"), "s.json").solver.krylov.coarseSegments == 15);
+}
+
+TEST_CASE("the Schwarz strategy: its preconditioner alone, bitwise across thread counts, and its fallback") {
+  auto w = squeezedBundle(0.1);
+  const LinearSystem& ls = w->system;
+  const Eigen::VectorXd b = randomVector(ls.freeCount, 11);
+  // The preconditioner applied in arenas of 1 and 2 threads: the fibre blocks write disjoint
+  // equations, so the result is bitwise the same.
+  std::vector<Eigen::VectorXd> y(2);
+  for (int threads : {1, 2}) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      SchwarzPreconditioner p;
+      std::string message;
+      REQUIRE(p.build(ls, w->fibres, 8, message));
+      p.apply(b, y[size_t(threads - 1)]);
+    });
+  }
+  CHECK(y[0] == y[1]);
+  // The preconditioner does the work: with it GMRES(40) reaches 1e-8 in under 100 iterations,
+  // without it (M = I) not in 200.
+  LinearSolver solver;
+  CHECK(solveWith(LinearStrategy::Schwarz, ls, b, solver, &w->fibres) <= KrylovSettings{}.tolerance);
+  CHECK(solver.stats().fallbacks == 0);
+  CHECK(solver.stats().maxKrylovIterations < 100);
+  MESSAGE("Schwarz: " << solver.stats().maxKrylovIterations << " GMRES iterations");
+  const SparseMatrix K = ls.symmetric ? SparseMatrix(ls.K.selfadjointView<Eigen::Upper>()) : ls.K;
+  const LinearOperator A = [&](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = K * v; };
+  const LinearOperator identity = [](const Eigen::VectorXd& v, Eigen::VectorXd& out) { out = v; };
+  Eigen::VectorXd x;
+  GmresWorkspace ws;
+  CHECK_FALSE(gmres(A, identity, b, x, {.tolerance = 1e-8, .restart = 40, .maxIterations = 200}, ws).converged);
+  // GMRES allowed a single iteration cannot reach the tolerance: the solve falls back to MUMPS's
+  // exact LU of the same K, counted, and is still solved.
+  LinearSolver limited;
+  limited.setKrylov({.maxIterations = 1});
+  CHECK(solveWith(LinearStrategy::Schwarz, ls, b, limited, &w->fibres) <= 1e-10);
+  CHECK(limited.stats().krylovFailures == 1);
+  CHECK(limited.stats().fallbacks == 1);
+  // Without the fibres the strategy says so.
+  LinearSolver blind;
+  blind.setStrategy(LinearStrategy::Schwarz);
+  std::string message;
+  CHECK_FALSE(blind.factorise(ls, message));
+  CHECK(message.find("no fibres") != std::string::npos);
 }
 
 TEST_CASE("the linear solver's spans appear in the trace with their counts, which the step report gives") {

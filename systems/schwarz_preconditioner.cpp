@@ -1,0 +1,195 @@
+#include "systems/schwarz_preconditioner.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/UmfPackSupport>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+// LAPACK's banded LU (OpenBLAS ships LAPACK): factor and solve, Fortran calling convention.
+extern "C" {
+void dgbtrf_(const int* m, const int* n, const int* kl, const int* ku, double* ab, const int* ldab,
+             int* ipiv, int* info);
+void dgbtrs_(const char* trans, const int* n, const int* kl, const int* ku, const int* nrhs,
+             const double* ab, const int* ldab, const int* ipiv, double* b, const int* ldb,
+             int* info, std::size_t transLength);
+}
+
+namespace fibra {
+namespace {
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// One fibre's diagonal block in LAPACK band storage (kl = ku = band; ldab = 3 band + 1;
+// A(i, j) at ab[(2 band + i - j) + j ldab]), with its LU and pivots after dgbtrf.
+struct FibreBlock {
+  Index first = 0;  // first equation
+  int n = 0;        // equations of the fibre (0: all held)
+  int band = 0;
+  std::vector<double> ab;
+  std::vector<int> pivots;
+};
+
+}  // namespace
+
+struct SchwarzPreconditioner::Impl {
+  const LinearSystem* ls = nullptr;
+  SparseMatrix full;                 // K in full when ls stores a symmetric K's upper triangle
+  std::vector<FibreBlock> blocks;    // per fibre
+  SparseMatrix Phi, Ac;              // coarse basis (equations x coarse unknowns), Phi^T K Phi
+  Eigen::UmfPackLU<SparseMatrix> coarse;
+  std::vector<int> acOuter, acInner;  // the pattern of Ac that `coarse` analysed
+  SchwarzTimes times;
+
+  const SparseMatrix& K() const { return ls->symmetric ? full : ls->K; }
+  bool factoriseBlocks(const FibreStore& fibres, std::string& message);
+  void basis(const FibreStore& fibres, int segments);
+  bool factoriseCoarse(std::string& message);
+  void applyBlocks(Eigen::VectorXd& y) const;
+};
+
+// Equation ranges and band LUs of every fibre's block.
+bool SchwarzPreconditioner::Impl::factoriseBlocks(const FibreStore& fibres, std::string& message) {
+  const Index nf = fibres.fibres();
+  blocks.assign(size_t(nf), {});
+  for (Index f = 0; f < nf; ++f) {
+    FibreBlock& b = blocks[size_t(f)];
+    const Index d0 = kNodeDofs * fibres.firstNode[f], d1 = d0 + kNodeDofs * fibres.nodeCount[f];
+    Index first = -1, last = -1;
+    for (Index d = d0; d < d1; ++d)
+      if (ls->equation[d] >= 0) last = ls->equation[d], first = first < 0 ? last : first;
+    b.first = std::max<Index>(first, 0);
+    b.n = first < 0 ? 0 : int(last - first + 1);
+    b.band = std::min(b.n - 1, kNodeDofs * (fibres.order[f] + 1) - 1);
+  }
+  const SparseMatrix& A = K();
+  std::vector<int> failed(size_t(nf), 0);
+  tbb::parallel_for(Index(0), nf, [&](Index f) {
+    FibreBlock& b = blocks[size_t(f)];
+    if (b.n == 0) return;
+    const int ld = 3 * b.band + 1;
+    b.ab.assign(size_t(ld) * size_t(b.n), 0.0);
+    b.pivots.resize(size_t(b.n));
+    for (int j = 0; j < b.n; ++j)
+      for (SparseMatrix::InnerIterator it(A, b.first + j); it; ++it) {
+        const Index i = it.row() - b.first;
+        if (i >= 0 && i < b.n && std::abs(i - j) <= b.band)
+          b.ab[size_t(2 * b.band + i - j) + size_t(j) * size_t(ld)] = it.value();
+      }
+    int info = 0;
+    dgbtrf_(&b.n, &b.n, &b.band, &b.band, b.ab.data(), &ld, b.pivots.data(), &info);
+    failed[size_t(f)] = info != 0;
+  });
+  for (Index f = 0; f < nf; ++f)
+    if (failed[size_t(f)]) {
+      message = "Schwarz: the block of fibre " + fibres.name[size_t(f)] + " is singular";
+      return false;
+    }
+  return true;
+}
+
+// Phi of the header: per fibre, hats over `segments` pieces of its node index, times the three
+// translations of x0 and the three rotations of the directors. Explicit zeros are kept, so
+// that the pattern depends on the held DOFs only.
+void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) {
+  std::vector<Eigen::Triplet<double>> t;
+  const Index columnsPerFibre = Index(segments + 1) * 6;
+  for (Index f = 0; f < fibres.fibres(); ++f) {
+    const Index nodes = fibres.nodeCount[f];
+    for (Index k = 0; k < nodes; ++k) {
+      const Index node = fibres.firstNode[f] + k;
+      const double at = double(k) * segments / double(nodes - 1);
+      const Vec3 g[2] = {g1Of(fibres.q, node), g2Of(fibres.q, node)};
+      for (int c = std::max(0, int(at)); c <= std::min(segments, int(at) + 1); ++c) {
+        const double phi = 1 - std::abs(at - c);
+        if (!(phi > 0)) continue;
+        const Index column = f * columnsPerFibre + Index(c) * 6;
+        auto add = [&](int dof, Index col, double v) {
+          const Index e = ls->equation[kNodeDofs * node + dof];
+          if (e >= 0) t.emplace_back(e, col, v);
+        };
+        for (int i = 0; i < 3; ++i) {
+          add(i, column + i, phi);
+          for (int a = 0; a < 2; ++a) {
+            const Vec3 dg = Vec3::Unit(i).cross(g[a]) * phi;
+            for (int r = 0; r < 3; ++r) add(3 + 3 * a + r, column + 3 + i, dg(r));
+          }
+        }
+      }
+    }
+  }
+  Phi.resize(ls->freeCount, fibres.fibres() * columnsPerFibre);
+  Phi.setFromTriplets(t.begin(), t.end());
+}
+
+// A_c = Phi^T K Phi; a coarse unknown whose column of Phi is empty (all its DOFs held) gets 1 on
+// the diagonal. UMFPACK's pattern analysis is redone only when A_c's pattern changes.
+bool SchwarzPreconditioner::Impl::factoriseCoarse(std::string& message) {
+  Ac = SparseMatrix(Phi.transpose()) * (K() * Phi);
+  for (Index j = 0; j < Ac.cols(); ++j)
+    if (Phi.outerIndexPtr()[j + 1] == Phi.outerIndexPtr()[j]) Ac.coeffRef(j, j) = 1;
+  Ac.makeCompressed();
+  const std::vector<int> outer(Ac.outerIndexPtr(), Ac.outerIndexPtr() + Ac.cols() + 1),
+      inner(Ac.innerIndexPtr(), Ac.innerIndexPtr() + Ac.nonZeros());
+  if (outer != acOuter || inner != acInner) {
+    coarse.umfpackControl()(UMFPACK_IRSTEP) = 0;  // a preconditioner: no iterative refinement
+    coarse.analyzePattern(Ac);
+    acOuter = outer, acInner = inner;
+  }
+  coarse.factorize(Ac);
+  if (coarse.info() != Eigen::Success) {
+    message = "Schwarz: the coarse matrix is singular";
+    return false;
+  }
+  return true;
+}
+
+// y = B^-1 y, fibre by fibre.
+void SchwarzPreconditioner::Impl::applyBlocks(Eigen::VectorXd& y) const {
+  tbb::parallel_for(size_t(0), blocks.size(), [&](size_t f) {
+    const FibreBlock& b = blocks[f];
+    if (b.n == 0) return;
+    const int ld = 3 * b.band + 1, one = 1;
+    int info = 0;
+    dgbtrs_("N", &b.n, &b.band, &b.band, &one, b.ab.data(), &ld, b.pivots.data(),
+            y.data() + b.first, &b.n, &info, 1);
+  });
+}
+
+SchwarzPreconditioner::SchwarzPreconditioner() : impl_(std::make_unique<Impl>()) {}
+SchwarzPreconditioner::~SchwarzPreconditioner() = default;
+
+bool SchwarzPreconditioner::build(const LinearSystem& ls, const FibreStore& fibres, int segments,
+                                  std::string& message) {
+  Impl& m = *impl_;
+  m.ls = &ls;
+  m.times = {};
+  if (ls.symmetric) m.full = ls.K.selfadjointView<Eigen::Upper>();
+  auto t0 = std::chrono::steady_clock::now();
+  const bool blocks = m.factoriseBlocks(fibres, message);
+  m.times.local = since(t0);
+  if (!blocks) return false;
+  t0 = std::chrono::steady_clock::now();
+  m.basis(fibres, std::max(1, segments));
+  const bool coarse = m.factoriseCoarse(message);
+  m.times.coarse = since(t0);
+  return coarse;
+}
+
+void SchwarzPreconditioner::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  const Impl& m = *impl_;
+  const Eigen::VectorXd yc = m.Phi * m.coarse.solve(Eigen::VectorXd(m.Phi.transpose() * v));
+  y.noalias() = v - m.K() * yc;
+  m.applyBlocks(y);
+  y += yc;
+}
+
+void SchwarzPreconditioner::product(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
+  y.noalias() = impl_->K() * v;
+}
+
+const SchwarzTimes& SchwarzPreconditioner::times() const { return impl_->times; }
+
+}  // namespace fibra

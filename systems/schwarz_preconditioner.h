@@ -1,0 +1,62 @@
+// Schwarz preconditioner: a two-level preconditioner of the contact tangent that follows the
+// fibres, for the `schwarz` strategy of systems/linear_solver.h (GMRES on the true K, right-
+// preconditioned by it; docs/RESULTS.md "Fibre-block preconditioners" has the measurements that
+// chose its form).
+//
+// Reads  LinearSystem (K: full, or the upper triangle of a symmetric K; the equation numbering,
+//        in which a fibre's free DOFs are contiguous), FibreStore (node ranges, current x0, g1,
+//        g2 for the coarse basis).
+// Writes its own factors (no shared state).
+// Computes
+//   local level B: per fibre f, the banded LU (LAPACK dgbtrf, partial pivoting) of its diagonal
+//     block K_ff restricted to the band of one element (|i - j| < 9 (order + 1) equations);
+//     couplings outside it (other fibres, self-contact) act only through the products with K.
+//   coarse level: Phi, per fibre and per hat function phi_c of the node index k over `segments`
+//     pieces (c = 0..segments, phi_c(k) = max(0, 1 - |k segments / (n - 1) - c|)), six columns:
+//     the translations dx0 = e_i phi_c and the rotations of the section dg_a = (e_i x g_a) phi_c
+//     (i = 1..3); A_c = Phi^T K Phi, LU by UMFPACK (its pattern analysed once per K's pattern
+//     revision).
+//   apply: y_c = Phi A_c^-1 Phi^T v;  y = y_c + B^-1 (v - K y_c)   (multiplicative two-level).
+// Without the coarse level nothing converges on dense bundles (the contact couples the fibres at
+// every wavelength along them); 8 segments on fibres of 15 elements took 150-171 GMRES
+// iterations where 15 took 69-70.
+// Threading: the fibre blocks are factorised and applied in parallel (tbb::parallel_for in the
+// caller's arena), each writing only its own fibre's equations: bitwise the same for any thread
+// count; the coarse level and the products are sequential.
+// Errors: build() returns false with a message when a fibre block or A_c is singular.
+#pragma once
+
+#include "components/fibres.h"
+#include "components/linear_system.h"
+
+#include <memory>
+#include <string>
+
+namespace fibra {
+
+struct SchwarzTimes {
+  double local = 0, coarse = 0;  // s spent building the fibre blocks and the coarse level
+};
+
+class SchwarzPreconditioner {
+ public:
+  SchwarzPreconditioner();
+  ~SchwarzPreconditioner();
+  SchwarzPreconditioner(const SchwarzPreconditioner&) = delete;
+  SchwarzPreconditioner& operator=(const SchwarzPreconditioner&) = delete;
+
+  // Builds both levels from ls.K and the fibres' current state; segments >= 1. Keeps a pointer
+  // to ls (its K is used by apply()): it must stay alive and unchanged until the next build.
+  bool build(const LinearSystem& ls, const FibreStore& fibres, int segments, std::string& message);
+  // y = M^-1 v (free equations).
+  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
+  // y = K v with the K of the last build (full or upper-triangle storage).
+  void product(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
+  const SchwarzTimes& times() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace fibra
