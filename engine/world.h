@@ -53,8 +53,9 @@ struct WorldDef {
   Trace* trace = nullptr;               // records the systems' spans when set (engine/trace.h)
   LuSolver luSolver = LuSolver::EigenSparseLu;  // non-symmetric tangents (friction); see
                                                 // docs/RESULTS.md for the measurement
-  // The linear strategy; unset: the scene's solver.strategy (default auto, by size). The
-  // measured choice per size is in docs/RESULTS.md ("Linear solves at paper scale").
+  // The linear strategy; unset: the scene's solver.strategy (default auto: by size, and from
+  // 7 000 equations by the fill MUMPS's analysis estimates, systems/linear_solver.h). The
+  // measured choice is in docs/RESULTS.md ("Linear solves at paper scale", "Inside Newton").
   std::optional<LinearStrategy> linearStrategy;
 };
 
