@@ -265,7 +265,9 @@ void restoreCheckpoint(WorldState& s, std::istream& file) {
         "steps, contact, tools, stabilisation or probes differ, or damping was switched on or "
         "off (only the steps' names, iteration and cutback limits, tolerances, line search, "
         "predictor, damping where some step has it, and output_every, the solver and the "
-        "output but its probes may change)");
+        "output but its probes may change); or it was written by another build of fibra " +
+        std::string(FIBRA_VERSION_STRING) + " whose scene description has other fields (the "
+        "fingerprint covers them all)");
   Carried w;
   carried(a, w.time, w.step, w.increment, w.dt, w.rateStep, w.q, w.convergedQ, w.convergedR,
           w.convergedFext, w.rate, w.energy, w.committed, w.cliqueKeys);
