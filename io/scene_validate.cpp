@@ -506,8 +506,7 @@ void validateSolver(const SolverDef& s) {
          "applies to the strategies mumps and auto (mumps from " +
              std::to_string(kMumpsFromEquations) + " equations), not to '" +
              strategyName(s.strategy) + "'");
-  if (!(s.krylov.coarseSegments >= 1 && s.krylov.coarseSegments <= 1000))
-    fail("solver.coarse_segments", "must be in [1, 1000], got " + std::to_string(s.krylov.coarseSegments));
+  inRange(s.krylov.coarseSegments, 1, 1000, "solver.coarse_segments");
   // Only the Schwarz strategy has a coarse level (auto takes it on a heavy fill).
   if (s.krylov.coarseSegments != KrylovSettings{}.coarseSegments &&
       s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
