@@ -220,6 +220,8 @@ std::string solverLine(const SceneDef& s) {
   if (krylov)
     out += format(", GMRES to %g (restart %d, <= %d iterations)", v.krylov.tolerance,
                   v.krylov.restart, v.krylov.maxIterations);
+  if (krylov && v.krylov.forcingMax > 0)
+    out += format(", inexact Newton (forcing term <= %g)", v.krylov.forcingMax);
   return out + "\n";
 }
 

@@ -12,7 +12,8 @@
 //       inside GMRES (mumps-blr alone: 1e-6); mumps-full, mumps given a symmetric K in full,
 //       LU instead of LDL^T)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
-//       [--coarse-segments 8] (schwarz)
+//       [--coarse-segments 8] (schwarz) [--forcing-max 0,1e-2] (inexact Newton, each value
+//       with each Newton strategy; 0: every solve to the Krylov tolerance)
 //       [--scene FILE [--checkpoint FILE]] (a scene file, from a stopped run's state, instead of
 //       a built-in case)
 //       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
@@ -65,6 +66,7 @@ struct Options : TangentCase {
   int maxIterations = 30;  // Newton iterations per attempt
   int cutbacks = 8;        // per increment
   std::vector<std::string> newtonStrategies{"krylov", "umfpack"};
+  std::vector<double> forcingMax{0};  // KrylovSettings::forcingMax per Newton run
   std::string csv = "linear_solves.csv";
 };
 
@@ -111,12 +113,16 @@ void newton(const Options& o) {
   std::printf("Newton: %d increment(s), %s\n", o.newton, o.friction ? "friction 0.1" : "frictionless");
   Eigen::VectorXd firstQ;  // the final state of the first strategy run, to compare the others with
   for (int threads : o.threads)
-    for (const std::string& name : o.newtonStrategies) {
+    for (const std::string& name : o.newtonStrategies)
+      for (double forcing : o.forcingMax) {
       bench::setBlasThreads(threads);
+      resetPeak();
       WorldState w;
       w.scene = sceneOf(o, 5);
       w.scene.solver.krylov.refactorAbove = o.refactorAbove;
       w.scene.solver.krylov.coarseSegments = o.coarseSegments;
+      w.scene.solver.krylov.forcingMax = forcing;
+      std::printf("  %s, forcing term <= %g\n", name.c_str(), forcing);
       for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
       w.def.threads = threads;
       LinearStrategy s;
@@ -135,7 +141,7 @@ void newton(const Options& o) {
         std::ifstream in(o.checkpoint, std::ios::binary);
         restoreCheckpoint(w, in);
       }
-      int iterations = 0;
+      int iterations = 0, krylovIterations = 0, fallbacks = 0;
       double wall = 0, assemble = 0, factorise = 0, solve = 0;
       for (int inc = 1; inc <= o.newton; ++inc) {
         StepReport rep;
@@ -150,12 +156,14 @@ void newton(const Options& o) {
                     st.krylovIterations, st.maxKrylovIterations, st.krylovFailures, st.fallbacks, st.shift,
                     st.flopsPerEntry, st.schwarzChoices);
         iterations += rep.totalIterations;
+        krylovIterations += st.krylovIterations, fallbacks += st.fallbacks;
         wall += t, assemble += rep.timings.assemble, factorise += rep.timings.factorise, solve += rep.timings.solve;
         if (rep.status != StepStatus::Converged) break;
       }
       std::printf("  thr %d %-8s total %d it, %.2f s: per iteration %.3f s (assemble %.3f, factorise %.3f, "
-                  "solve %.3f)\n", threads, name.c_str(), iterations, wall, wall / iterations,
-                  assemble / iterations, factorise / iterations, solve / iterations);
+                  "solve %.3f), krylov it %d, fallbacks %d, peak %.2f GiB\n", threads, name.c_str(), iterations,
+                  wall, wall / iterations, assemble / iterations, factorise / iterations, solve / iterations,
+                  krylovIterations, fallbacks, peakGiB());
       if (firstQ.size() == 0) firstQ = w.fibres.q;
       else if (firstQ.size() == w.fibres.q.size())
         std::printf("  max |q - q of the first strategy| = %.2e\n",
@@ -179,6 +187,7 @@ int main(int argc, char** argv) {
     else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
     else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
     else if (k == "--coarse-segments") o.coarseSegments = std::stoi(v);
+    else if (k == "--forcing-max") { o.forcingMax.clear(); for (auto& f : split(v)) o.forcingMax.push_back(std::stod(f)); }
     else if (k == "--max-iterations") o.maxIterations = std::stoi(v);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);

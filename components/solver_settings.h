@@ -23,6 +23,11 @@ struct KrylovSettings {
                              // relative accuracy, the preconditioner of GMRES (dimensionless)
   int coarseSegments = 8;    // Schwarz strategy: hat functions per fibre of its coarse level
                              // over this many pieces of the node index (>= 1)
+  double forcingMax = 0;     // > 0: inexact Newton for the GMRES strategies (schwarz, krylov,
+                             // krylov-lu, BLR mumps): a solve stops at the forcing term Newton
+                             // passes (Eisenstat-Walker, systems/newton.h), at most this and at
+                             // least `tolerance` (dimensionless, < 1); 0: every solve to
+                             // `tolerance`
 };
 
 }  // namespace fibra

@@ -223,7 +223,7 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
 SolverDef readSolver(const Json& j, const std::string& path) {
   const Fields f(j, path, {"strategy", "ordering", "krylov_tolerance", "krylov_restart",
                            "krylov_max_iterations", "refactor_above", "blr_tolerance",
-                           "coarse_segments"});
+                           "coarse_segments", "forcing_max"});
   SolverDef s;
   s.strategy = f.choice("strategy",
                         {{"auto", LinearStrategy::Auto}, {"direct", LinearStrategy::Direct},
@@ -240,6 +240,7 @@ SolverDef readSolver(const Json& j, const std::string& path) {
   s.krylov.refactorAbove = f.integer("refactor_above", s.krylov.refactorAbove);
   s.krylov.blrTolerance = f.number("blr_tolerance", s.krylov.blrTolerance);
   s.krylov.coarseSegments = f.integer("coarse_segments", s.krylov.coarseSegments);
+  s.krylov.forcingMax = f.number("forcing_max", s.krylov.forcingMax);
   return s;
 }
 

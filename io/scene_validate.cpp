@@ -512,6 +512,15 @@ void validateSolver(const SolverDef& s) {
       s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
     fail("solver.coarse_segments", std::string("applies to the strategies schwarz and auto, not to '") +
                                        strategyName(s.strategy) + "'");
+  if (!(s.krylov.forcingMax >= 0 && s.krylov.forcingMax < 1))
+    fail("solver.forcing_max", "must be in [0, 1), got " + num(s.krylov.forcingMax));
+  // Only a GMRES solve can stop early; the direct strategies would ignore it.
+  const LinearStrategy st = s.strategy;
+  if (s.krylov.forcingMax > 0 && (st == LinearStrategy::Direct || st == LinearStrategy::Umfpack ||
+                                  (st == LinearStrategy::Mumps && !(s.krylov.blrTolerance > 0))))
+    fail("solver.forcing_max", std::string("applies to the GMRES strategies (schwarz, krylov, "
+                                           "krylov-lu, mumps with blr_tolerance, auto), not to '") +
+                                   strategyName(st) + "'");
 }
 
 // Plots: the columns exist only once the World is built (io/plot_outputs.h checks them).

@@ -7,6 +7,7 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/SparseLU>
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
 #include <chrono>
 
 // OpenBLAS's thread count: a process-wide setting (cblas.h of the OpenBLAS package).
@@ -108,6 +109,7 @@ struct LinearSolver::Impl {
   double fill = 0;                       // MUMPS's estimated flops per non-zero of K, last analysis
   GmresWorkspace workspace;
   KrylovSettings krylov;
+  double forcing = 0;                    // the solve's forcing term (0: krylov.tolerance)
   LuSolver luKind = LuSolver::EigenSparseLu;
   LinearStrategy strategy = LinearStrategy::Auto;
   Ordering ordering = Ordering::Auto;
@@ -169,6 +171,12 @@ struct LinearSolver::Impl {
   bool exactMumps(const LinearSystem& ls, std::string& message);
   bool mumpsAnalyse(const LinearSystem& ls, std::string& message);
   bool schwarzPays(const LinearSystem& ls);
+  // The GMRES tolerance of the current solve: krylov.tolerance, or the forcing term within
+  // [tolerance, forcingMax] when inexact Newton is on.
+  double gmresTolerance() const {
+    if (!(krylov.forcingMax > 0) || !(forcing > 0)) return krylov.tolerance;
+    return std::clamp(forcing, krylov.tolerance, std::max(krylov.tolerance, krylov.forcingMax));
+  }
 };
 
 bool LinearSolver::Impl::direct(const LinearSystem& ls, std::string& message) {
@@ -284,7 +292,7 @@ GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::Vecto
       y.noalias() = ls.K * v;
   };
   GmresSettings g;
-  g.tolerance = krylov.tolerance;
+  g.tolerance = gmresTolerance();
   g.restart = krylov.restart;
   g.maxIterations = limit;
   x.setZero(b.size());
@@ -419,7 +427,7 @@ void LinearSolver::Impl::schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd&
   const LinearOperator A = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) { schwarz.product(v, y); };
   const LinearOperator M = [this](const Eigen::VectorXd& v, Eigen::VectorXd& y) { schwarz.apply(v, y); };
   GmresSettings g;
-  g.tolerance = krylov.tolerance;
+  g.tolerance = gmresTolerance();
   g.restart = krylov.restart;
   g.maxIterations = krylov.maxIterations;
   x.setZero(b.size());
@@ -433,6 +441,7 @@ void LinearSolver::Impl::schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd&
   stats.maxKrylovIterations = std::max(stats.maxKrylovIterations, r.iterations);
   if (r.converged) return;
   ++stats.krylovFailures;
+  if (keepsInexactMiss(g.tolerance, krylov.tolerance, r.residual)) return;
   ++stats.fallbacks;
   std::string message;
   const auto t0 = std::chrono::steady_clock::now();
@@ -444,6 +453,10 @@ void LinearSolver::Impl::schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd&
   }
   x = b;
   mumps.solve(x);
+}
+
+bool keepsInexactMiss(double asked, double tolerance, double reached) {
+  return asked > tolerance && reached <= std::min(kInexactMissBound, 10 * asked);
 }
 
 bool autoTakesSchwarz(double flopsPerEntry, bool haveFibres) {
@@ -502,8 +515,11 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   }
 }
 
-void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) { solve(b, x, 0.0); }
+
+void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double forcing) {
   Impl& m = *impl_;
+  m.forcing = forcing;
   if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
   Span span(m.trace, "solve", "solver");
   span.items(1);

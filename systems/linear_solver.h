@@ -32,6 +32,13 @@
 //   (setFibres). A preconditioner that cannot be built (a singular block) or a GMRES that misses
 //   the tolerance within maxIterations falls back to MUMPS's exact LU for that call (counted in
 //   fallbacks; the failed GMRES in krylovFailures).
+// - Inexact Newton (KrylovSettings::forcingMax > 0): the GMRES strategies (Krylov, KrylovLu,
+//   BLR Mumps, Schwarz) stop a solve at the forcing term Newton passes to solve(b, x, forcing)
+//   (systems/newton.h), clamped to [tolerance, forcingMax]; the exact ones ignore it. A
+//   Schwarz solve that misses such a forcing term within maxIterations but comes within 10x
+//   of it, and to kInexactMissBound, keeps its iterate instead of falling back to MUMPS
+//   (keepsInexactMiss; counted in krylovFailures, not in fallbacks): |K x - b| < |b| still
+//   makes it a descent direction of |r|^2.
 // - Auto: Direct below kMumpsFromEquations equations, Mumps from there (measured rule:
 //   docs/RESULTS.md "MUMPS inside fibra"; on the contact tangents measured neither Krylov
 //   preconditioner pays); a tangent MUMPS fails on goes to Direct for that call (counted in
@@ -102,6 +109,13 @@ inline constexpr double kSchwarzFromFlopsPerEntry = 2000;
 // estimates flopsPerEntry factorisation flops per non-zero, haveFibres when the solver knows
 // the fibres (setFibres).
 bool autoTakesSchwarz(double flopsPerEntry, bool haveFibres);
+// Inexact Newton: the largest relative residual a missed Schwarz solve may keep
+// (dimensionless; keepsInexactMiss).
+inline constexpr double kInexactMissBound = 0.1;
+// A GMRES solve asked to reach `asked` (a forcing term; the strategy's own tolerance is
+// `tolerance`) that stopped at `reached` without converging: kept when asked > tolerance and
+// reached <= min(kInexactMissBound, 10 asked).
+bool keepsInexactMiss(double asked, double tolerance, double reached);
 // Auto ordering's rule: UMFPACK by METIS from this many equations (measured, docs/RESULTS.md
 // "Orderings": on frictional yarn tangents METIS factorises 1.25x faster than AMD at 16.8k
 // equations and 3.1x at 68.8k; at 6.9k AMD is 1.3x faster).
@@ -129,6 +143,11 @@ class LinearSolver {
   bool factorise(const LinearSystem& ls, std::string& message);
   // x = K^-1 b (free DOFs, size freeCount); after a successful factorise.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // The same, where an iterative strategy may stop at |K x - b| <= eta |b|, the forcing term of
+  // inexact Newton (dimensionless): with KrylovSettings::forcingMax > 0 the GMRES strategies
+  // solve to clamp(forcing, tolerance, forcingMax); otherwise, and for the exact strategies,
+  // as solve(b, x).
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double forcing);
 
   const LinearSolveStats& stats() const;
   void resetStats();

@@ -10,6 +10,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// The forcing term of the convergence check's solve of dq_bar: its size to two digits.
+constexpr double kCheckForcing = 1e-2;
+
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 struct Context {
@@ -39,9 +42,9 @@ struct Context {
     return m;
   }
 
-  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double forcing) {
     const auto t0 = Clock::now();
-    solver.solve(b, x);
+    solver.solve(b, x, forcing);
     timings.solve += since(t0);
   }
 
@@ -135,6 +138,15 @@ std::string stagnation(const std::vector<NewtonRecord>& h, const NewtonSettings&
 
 }  // namespace
 
+double forcingTerm(double rho, double previous, double eta, double forceTolerance) {
+  if (rho <= forceTolerance) return 0;  // only the increment test is left: exact directions
+  if (!(previous > 0)) return 1;
+  double next = 0.9 * std::pow(rho / previous, 2);
+  if (0.9 * eta * eta > 0.1) next = std::max(next, 0.9 * eta * eta);
+  next = std::max(next, 0.5 * forceTolerance / rho);
+  return std::min(next, 1.0);
+}
+
 double relativeToReference(const LinearSystem& ls, const Eigen::VectorXd& f, double lengthScale,
                            double forceFloor) {
   double fFree2 = 0, rFree2 = 0, rAll2 = 0, ext2 = 0;
@@ -160,6 +172,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     return res;
   }
   const double first = res.residual;
+  double previous = 0, eta = 1;  // the residual before the last step, the last forcing term
   for (int it = 1; it <= settings.maxIterations; ++it) {
     if (cb.cancel && cb.cancel()) {
       res.outcome = NewtonOutcome::Cancelled;
@@ -170,7 +183,9 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     const bool ok = solver.factorise(ls, res.message);
     timings.factorise += since(t0);
     if (!ok) return res;
-    c.solve(-c.rf, c.dq);
+    eta = forcingTerm(res.residual, previous, eta, settings.forceTolerance);
+    c.solve(-c.rf, c.dq, eta);
+    previous = res.residual;
 
     const auto [alpha, residual] = c.step(acceptance(res.history, res.residual, settings));
     res.iterations = res.longestPass = it;
@@ -183,7 +198,8 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
       return res;
     }
     if (residual <= settings.forceTolerance) {
-      c.solve(-c.rf, c.dqBar);  // the correction still needed, with the factorisation at hand
+      // the correction still needed, with the factorisation at hand
+      c.solve(-c.rf, c.dqBar, kCheckForcing);
       if (c.scaledMax(c.dqBar) <= settings.incrementTolerance) {
         res.outcome = NewtonOutcome::Converged;
         res.message.clear();

@@ -24,6 +24,15 @@
 //   max |dq_bar| <= incrementTolerance, dq_bar = -K^-1 r_f the correction the state still
 //   needs, by one back-substitution with the factorisation at hand (no extra factorisation).
 // forceFloor keeps F_ref above the residual's roundoff (the world uses 1e-4 E A).
+// Inexact Newton: every solve is passed a forcing term eta_k (the GMRES strategies stop at
+// |K dq + r_f| <= eta_k |r_f| when the solver's KrylovSettings::forcingMax is set; the exact ones
+// ignore it), Eisenstat and Walker's choice 2 (SIAM J. Sci. Comput. 17, 1996, eq. 2.6 with
+// gamma = 0.9, alpha = 2, and their safeguard): eta_1 = 1, eta_k = 0.9 (rho_k / rho_{k-1})^2,
+// rho the relative residual, at least 0.9 eta_{k-1}^2 when that exceeds 0.1, and at least
+// 0.5 forceTolerance / rho_k (no solve more accurate than the residual test can see), and 0
+// (the solver's own tolerance) once rho_k passes the residual test and only the increment test
+// is left, which wants exact directions; the solver clamps it to [tolerance, forcingMax]. The
+// convergence check's correction dq_bar is solved to 1e-2 (its size to two digits).
 // Fails (never silently): non-finite residual, singular tangent, relative residual beyond
 // `divergence` times max(its first value, 1), stagnation, iteration limit, or cancellation.
 // Stagnation, when a cutback serves better than more iterations: Newton cycles (the last 2p
@@ -87,6 +96,11 @@ struct NewtonCallbacks {
 // f = ls.r gives Newton's relative residual.
 double relativeToReference(const LinearSystem& ls, const Eigen::VectorXd& f, double lengthScale,
                            double forceFloor);
+
+// Eisenstat-Walker's forcing term eta_k for the solve after relative residual rho (see above);
+// previous: the relative residual before the last step (<= 0 at a pass's first solve), eta: the
+// last forcing term. Dimensionless, in [0, 1] (0: the solver's tolerance).
+double forcingTerm(double rho, double previous, double eta, double forceTolerance);
 
 NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& solver,
                          const NewtonSettings& settings, const NewtonCallbacks& callbacks,

@@ -39,6 +39,7 @@ struct SchwarzPreconditioner::Impl {
   SparseMatrix full;                 // K in full when ls stores a symmetric K's upper triangle
   std::vector<FibreBlock> blocks;    // per fibre
   SparseMatrix Phi, Ac;              // coarse basis (equations x coarse unknowns), Phi^T K Phi
+  Index perFibre = 0;                // coarse unknowns per fibre (Phi's columns of a fibre)
   Eigen::UmfPackLU<SparseMatrix> coarse;
   std::vector<int> acOuter, acInner;  // the pattern of Ac that `coarse` analysed
   SchwarzTimes times;
@@ -46,6 +47,7 @@ struct SchwarzPreconditioner::Impl {
   const SparseMatrix& K() const { return ls->symmetric ? full : ls->K; }
   bool factoriseBlocks(const FibreStore& fibres, std::string& message);
   void basis(const FibreStore& fibres, int segments);
+  void coarseMatrix();
   bool factoriseCoarse(std::string& message);
   void applyBlocks(Eigen::VectorXd& y) const;
 };
@@ -95,7 +97,7 @@ bool SchwarzPreconditioner::Impl::factoriseBlocks(const FibreStore& fibres, std:
 // that the pattern depends on the held DOFs only.
 void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) {
   std::vector<Eigen::Triplet<double>> t;
-  const Index columnsPerFibre = Index(segments + 1) * 6;
+  const Index columnsPerFibre = perFibre = Index(segments + 1) * 6;
   for (Index f = 0; f < fibres.fibres(); ++f) {
     const Index nodes = fibres.nodeCount[f];
     for (Index k = 0; k < nodes; ++k) {
@@ -124,13 +126,39 @@ void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) 
   Phi.setFromTriplets(t.begin(), t.end());
 }
 
-// A_c = Phi^T K Phi; a coarse unknown whose column of Phi is empty (all its DOFs held) gets 1 on
-// the diagonal. UMFPACK's pattern analysis is redone only when A_c's pattern changes.
-bool SchwarzPreconditioner::Impl::factoriseCoarse(std::string& message) {
-  Ac = SparseMatrix(Phi.transpose()) * (K() * Phi);
-  for (Index j = 0; j < Ac.cols(); ++j)
+// A_c = Phi^T K Phi, one fibre's coarse columns at a time (tbb over the fibres: Phi's columns
+// of fibre f are contiguous, so A_c's columns are the blocks Phi^T (K Phi_f) side by side, each
+// computed on its own: bitwise the same for any thread count). A coarse unknown whose column of
+// Phi is empty (all its DOFs held) gets 1 on the diagonal.
+void SchwarzPreconditioner::Impl::coarseMatrix() {
+  const SparseMatrix& A = K();
+  const SparseMatrix PhiT = Phi.transpose();
+  const Index nc = Phi.cols(), per = perFibre;
+  std::vector<SparseMatrix> parts(size_t(nc / per));
+  tbb::parallel_for(size_t(0), parts.size(), [&](size_t f) {
+    const SparseMatrix KPhi = A * Phi.middleCols(Index(f) * per, per);
+    parts[f] = PhiT * KPhi;
+  });
+  Index nnz = 0;
+  for (const SparseMatrix& p : parts) nnz += p.nonZeros();
+  Ac.resize(nc, nc);
+  Ac.resizeNonZeros(nnz);
+  Index at = 0, column = 0;
+  for (const SparseMatrix& p : parts)
+    for (Index j = 0; j < p.cols(); ++j, ++column) {
+      Ac.outerIndexPtr()[column] = int(at);
+      for (SparseMatrix::InnerIterator it(p, j); it; ++it, ++at)
+        Ac.innerIndexPtr()[at] = int(it.row()), Ac.valuePtr()[at] = it.value();
+    }
+  Ac.outerIndexPtr()[nc] = int(at);
+  for (Index j = 0; j < nc; ++j)
     if (Phi.outerIndexPtr()[j + 1] == Phi.outerIndexPtr()[j]) Ac.coeffRef(j, j) = 1;
   Ac.makeCompressed();
+}
+
+// A_c's LU; UMFPACK's pattern analysis is redone only when A_c's pattern changes.
+bool SchwarzPreconditioner::Impl::factoriseCoarse(std::string& message) {
+  coarseMatrix();
   const std::vector<int> outer(Ac.outerIndexPtr(), Ac.outerIndexPtr() + Ac.cols() + 1),
       inner(Ac.innerIndexPtr(), Ac.innerIndexPtr() + Ac.nonZeros());
   if (outer != acOuter || inner != acInner) {

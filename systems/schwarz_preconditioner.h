@@ -20,9 +20,12 @@
 // Without the coarse level nothing converges on dense bundles (the contact couples the fibres at
 // every wavelength along them); 8 segments on fibres of 15 elements took 150-171 GMRES
 // iterations where 15 took 69-70.
-// Threading: the fibre blocks are factorised and applied in parallel (tbb::parallel_for in the
-// caller's arena), each writing only its own fibre's equations: bitwise the same for any thread
-// count; the coarse level and the products are sequential.
+// Threading (tbb::parallel_for in the caller's arena), bitwise the same for any thread count:
+// the fibre blocks are factorised and applied in parallel, each writing only its own fibre's
+// equations; A_c is formed fibre by fibre (A_c's columns of fibre f = Phi^T (K Phi_f), each
+// block computed as the whole product would). The coarse LU, its solves and the products K v
+// are sequential (a parallel product by rows was measured: no gain on 2 threads once the copy of
+// K by rows is paid, docs/RESULTS.md "Inexact Newton").
 // Errors: build() returns false with a message when a fibre block or A_c is singular.
 #pragma once
 
