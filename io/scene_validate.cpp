@@ -6,7 +6,7 @@
 
 #include "engine/group_order.h"
 #include "io/json_reader.h"
-#include "systems/linear_solver.h"
+#include "io/validate_checks.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -22,59 +22,7 @@
 namespace fibra {
 namespace {
 
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-std::string at(const std::string& list, size_t i) { return list + "[" + std::to_string(i) + "]"; }
-
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw SceneError(path + ": " + what);
-}
-
-void positive(double v, const std::string& path) {
-  if (!(v > 0 && std::isfinite(v))) fail(path, "must be > 0, got " + num(v));
-}
-void nonNegative(double v, const std::string& path) {
-  if (!(v >= 0 && std::isfinite(v))) fail(path, "must be >= 0, got " + num(v));
-}
-void finite(double v, const std::string& path) {
-  if (!std::isfinite(v)) fail(path, "must be a finite number, got " + num(v));
-}
-void finite(const Vec3& v, const std::string& path) {
-  if (!v.allFinite()) fail(path, "must be a finite vector");
-}
-// Lengths and coordinates beyond this (mm) are beyond any scene, and their products overflow.
-constexpr double kLongest = 1e6;
-// A position or length in mm: finite and at most kLongest in size.
-void withinScene(double v, const std::string& path) {
-  finite(v, path);
-  if (std::abs(v) > kLongest)
-    fail(path, "must be at most " + num(kLongest) + " mm in size, got " + num(v));
-}
-void withinScene(const Vec3& v, const std::string& path) {
-  finite(v, path);
-  if (v.cwiseAbs().maxCoeff() > kLongest)
-    fail(path, "coordinates must be at most " + num(kLongest) + " mm in size");
-}
-void nonZero(const Vec3& v, const std::string& path) {
-  if (!(v.allFinite() && v.norm() > 0)) fail(path, "must be a finite, non-zero vector");
-  if (!std::isfinite(v.norm())) fail(path, "is too long: its length overflows a double");
-}
-// NaN means "the default"; any other value must be positive.
-void positiveOrDefault(double v, const std::string& path) {
-  if (!std::isnan(v)) positive(v, path);
-}
-void atLeast(int v, int min, const std::string& path) {
-  if (v < min) fail(path, "must be >= " + std::to_string(min) + ", got " + std::to_string(v));
-}
-void inRange(int v, int min, int max, const std::string& path) {
-  if (v < min || v > max)
-    fail(path, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " +
-                   std::to_string(v));
-}
+using namespace validate_checks;
 
 void checkName(const std::string& name, const std::string& path) {
   if (name.empty()) fail(path, "must not be empty");
@@ -489,38 +437,6 @@ void validateStabilisation(const StabilisationDef& st, const Names& fibres) {
   nonNegative(st.stiffness, "stabilisation.stiffness");
   for (size_t i = 0; i < st.fibres.size(); ++i)
     resolve(fibres, st.fibres[i], "fibre", at("stabilisation.fibres", i));
-}
-
-void validateSolver(const SolverDef& s) {
-  if (!(s.krylov.tolerance > 0 && s.krylov.tolerance < 1))
-    fail("solver.krylov_tolerance", "must be in (0, 1), got " + num(s.krylov.tolerance));
-  atLeast(s.krylov.restart, 1, "solver.krylov_restart");
-  atLeast(s.krylov.maxIterations, 1, "solver.krylov_max_iterations");
-  atLeast(s.krylov.refactorAbove, 1, "solver.refactor_above");
-  if (!(s.krylov.blrTolerance >= 0 && s.krylov.blrTolerance < 1))
-    fail("solver.blr_tolerance", "must be in [0, 1), got " + num(s.krylov.blrTolerance));
-  // Only MUMPS builds a block low-rank factor: anywhere else the setting would be ignored.
-  if (s.krylov.blrTolerance > 0 && s.strategy != LinearStrategy::Mumps &&
-      s.strategy != LinearStrategy::Auto)
-    fail("solver.blr_tolerance",
-         "applies to the strategies mumps and auto (mumps from " +
-             std::to_string(kMumpsFromEquations) + " equations), not to '" +
-             strategyName(s.strategy) + "'");
-  inRange(s.krylov.coarseSegments, 1, 1000, "solver.coarse_segments");
-  // Only the Schwarz strategy has a coarse level (auto takes it on a heavy fill).
-  if (s.krylov.coarseSegments != KrylovSettings{}.coarseSegments &&
-      s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
-    fail("solver.coarse_segments", std::string("applies to the strategies schwarz and auto, not to '") +
-                                       strategyName(s.strategy) + "'");
-  if (!(s.krylov.forcingMax >= 0 && s.krylov.forcingMax < 1))
-    fail("solver.forcing_max", "must be in [0, 1), got " + num(s.krylov.forcingMax));
-  // Only a GMRES solve can stop early; the direct strategies would ignore it.
-  const LinearStrategy st = s.strategy;
-  if (s.krylov.forcingMax > 0 && (st == LinearStrategy::Direct || st == LinearStrategy::Umfpack ||
-                                  (st == LinearStrategy::Mumps && !(s.krylov.blrTolerance > 0))))
-    fail("solver.forcing_max", std::string("applies to the GMRES strategies (schwarz, krylov, "
-                                           "krylov-lu, mumps with blr_tolerance, auto), not to '") +
-                                   strategyName(st) + "'");
 }
 
 // Plots: the columns exist only once the World is built (io/plot_outputs.h checks them).
