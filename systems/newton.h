@@ -32,7 +32,8 @@
 // 0.5 forceTolerance / rho_k (no solve more accurate than the residual test can see), and 0
 // (the solver's own tolerance) once rho_k passes the residual test and only the increment test
 // is left, which wants exact directions; the solver clamps it to [tolerance, forcingMax]. The
-// convergence check's correction dq_bar is solved to 1e-2 (its size to two digits).
+// convergence check's correction dq_bar is solved to the solver's own tolerance (its error, not
+// only its residual, must be small). The safeguard takes the unclamped eta_{k-1}.
 // Fails (never silently): non-finite residual, singular tangent, relative residual beyond
 // `divergence` times max(its first value, 1), stagnation, iteration limit, or cancellation.
 // Stagnation, when a cutback serves better than more iterations: Newton cycles (the last 2p
