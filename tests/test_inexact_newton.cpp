@@ -12,6 +12,38 @@ using namespace fibra;
 
 using bench::relativeResidual;
 
+namespace {
+
+// The frictional 7-fibre squeeze after its first increment: a real contact tangent.
+std::unique_ptr<WorldState> squeezedBundle() {
+  auto w = std::make_unique<WorldState>();
+  w->scene = scenes::bundle(1, 10, 0.01, 5e-4, 0.1);
+  w->def.threads = 1;
+  buildWorld(*w);
+  REQUIRE(advance(*w).status == StepStatus::Converged);
+  return w;
+}
+
+// One Schwarz solve of w's tangent with settings k and the forcing term `forcing`, b a fixed
+// ramp; returns |K x - b| / |b| and the solver's counts in `stats`.
+double schwarzSolve(const WorldState& w, const KrylovSettings& k, double forcing,
+                    LinearSolveStats& stats) {
+  const LinearSystem& ls = w.system;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(ls.freeCount, -1, 1);
+  LinearSolver solver;
+  solver.setStrategy(LinearStrategy::Schwarz);
+  solver.setFibres(&w.fibres);
+  solver.setKrylov(k);
+  std::string message;
+  REQUIRE(solver.factorise(ls, message));
+  Eigen::VectorXd x;
+  solver.solve(b, x, forcing);
+  stats = solver.stats();
+  return relativeResidual(ls, x, b);
+}
+
+}  // namespace
+
 TEST_CASE("the forcing term follows Eisenstat and Walker's choice 2 with its safeguards") {
   const double tol = 1e-8;
   // A pass's first solve: 1 (the solver clamps it to forcingMax).
@@ -29,25 +61,13 @@ TEST_CASE("the forcing term follows Eisenstat and Walker's choice 2 with its saf
 }
 
 TEST_CASE("with forcing_max the Schwarz strategy stops at the forcing term, within its bounds") {
-  WorldState w;
-  w.scene = scenes::bundle(1, 10, 0.01, 5e-4, 0.1);
-  w.def.threads = 1;
-  buildWorld(w);
-  REQUIRE(advance(w).status == StepStatus::Converged);
-  const LinearSystem& ls = w.system;
-  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(ls.freeCount, -1, 1);
+  const auto w = squeezedBundle();
   const auto solve = [&](double forcingMax, double forcing, int& iterations) {
-    LinearSolver solver;
-    solver.setStrategy(LinearStrategy::Schwarz);
-    solver.setFibres(&w.fibres);
-    solver.setKrylov({.forcingMax = forcingMax});
-    std::string message;
-    REQUIRE(solver.factorise(ls, message));
-    Eigen::VectorXd x;
-    solver.solve(b, x, forcing);
-    iterations = solver.stats().krylovIterations;
-    CHECK(solver.stats().fallbacks == 0);
-    return relativeResidual(ls, x, b);
+    LinearSolveStats stats;
+    const double r = schwarzSolve(*w, {.forcingMax = forcingMax}, forcing, stats);
+    iterations = stats.krylovIterations;
+    CHECK(stats.fallbacks == 0);
+    return r;
   };
   int exact = 0, loose = 0, capped = 0, off = 0, floor = 0;
   const double tol = KrylovSettings{}.tolerance;
@@ -76,30 +96,17 @@ TEST_CASE("a Schwarz solve that misses its forcing term by less than 10x keeps i
   // On a real tangent, GMRES cut short at 1, 2, ... iterations with the forcing term 1e-2:
   // every miss either keeps an iterate within 0.1 (no fallback) or falls back to MUMPS's exact
   // solve; both happen.
-  WorldState w;
-  w.scene = scenes::bundle(1, 10, 0.01, 5e-4, 0.1);
-  w.def.threads = 1;
-  buildWorld(w);
-  REQUIRE(advance(w).status == StepStatus::Converged);
-  const LinearSystem& ls = w.system;
-  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(ls.freeCount, -1, 1);
+  const auto w = squeezedBundle();
   int kept = 0, fellBack = 0;
   for (int limit = 1; limit <= 30; ++limit) {
-    LinearSolver solver;
-    solver.setStrategy(LinearStrategy::Schwarz);
-    solver.setFibres(&w.fibres);
-    solver.setKrylov({.maxIterations = limit, .forcingMax = 1e-2});
-    std::string message;
-    REQUIRE(solver.factorise(ls, message));
-    Eigen::VectorXd x;
-    solver.solve(b, x, 1e-2);
-    const double r = relativeResidual(ls, x, b);
+    LinearSolveStats stats;
+    const double r = schwarzSolve(*w, {.maxIterations = limit, .forcingMax = 1e-2}, 1e-2, stats);
     CAPTURE(limit);
-    if (solver.stats().krylovFailures == 0) {
+    if (stats.krylovFailures == 0) {
       CHECK(r <= 1e-2);
       continue;
     }
-    if (solver.stats().fallbacks == 0) {
+    if (stats.fallbacks == 0) {
       ++kept;
       CHECK(r > 1e-2);
       CHECK(r <= 0.1);
