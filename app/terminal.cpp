@@ -35,9 +35,9 @@ std::string lawLine(const ContactParams& c) {
                                   ? format("%g N/mm", c.initialPenalty)
                                   : std::string("E R");
   std::string out = format("  contact law: %s, initial penalty %s, change <= x%g, p_reg %g p_max, "
-                           "g_T,max %g mm, friction tangent %s",
+                           "step limit %g p_max, g_T,max %g mm, friction tangent %s",
                            penaltyBounds(c.pairs.penaltyMin[0], c.pairs.penaltyMax[0]).c_str(),
-                           initial.c_str(), c.penaltyChange, c.pRegRatio, c.gMax,
+                           initial.c_str(), c.penaltyChange, c.pRegRatio, c.stepPenetration, c.gMax,
                            c.symmetrised ? "symmetrised" : "consistent");
   if (c.fibres) out += format(", element placement %s, normals %s",
                               c.placement == ElementPlacement::Weighted  ? "weighted"

@@ -88,6 +88,10 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
     throw SceneError("contact.normal_acceleration: must be in [0, " +
                      std::to_string(kMaxNormalAcceleration) + "], got " +
                      std::to_string(def.normalAcceleration));
+  if (!(def.stepPenetration >= kStepPenetrationMin && def.stepPenetration <= kStepPenetrationMax))
+    throw SceneError("contact.step_penetration: must be in [" + number(kStepPenetrationMin) + ", " +
+                     number(kStepPenetrationMax) + "], got " + number(def.stepPenetration));
+  p.stepPenetration = def.stepPenetration;
   p.frictionFlips = def.frictionHoldAfter;
   p.frictionTolerance = def.frictionHoldTolerance;
   p.newtonNormals = def.normalUpdate != NormalUpdate::Loop;

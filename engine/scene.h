@@ -182,6 +182,9 @@ enum class FrictionTangent { Consistent, Symmetrised };
 enum class NormalUpdate { Newton, Loop, NewtonFrictionless };
 // The largest Anderson memory of loop B (contact `normal_acceleration`).
 inline constexpr int kMaxNormalAcceleration = 10;
+// Bounds of ContactDef::stepPenetration (x p_max): below 1 an element could not reach its own
+// p_max in one step; above 1000 the limit no longer acts.
+inline constexpr double kStepPenetrationMin = 1, kStepPenetrationMax = 1000;
 
 // Settings of the fibre pairs of one pair class, overriding the contact section's (NaN: that
 // value): friction, p_max and the penalty bounds. A rule names two contact classes (the same
@@ -216,6 +219,9 @@ struct ContactDef {
   double penaltyChange = 10;          // bound on k_new / k_old (and its inverse) per update
   double penaltyMin = 1;              // k >= this x the zone's section stiffness (E R, N/mm)
   double penaltyMax = 1e4;            // k <= this x the zone's section stiffness
+  double stepPenetration = 10;        // Newton's step limit, x each zone's p_max: no element
+                                      // closes deeper than this in one step nor, already
+                                      // closed, by more (docs/METHOD.md "A step limit ...")
   double friction = 0;                // mu between fibres
   double maxReversibleSlip = std::numeric_limits<double>::quiet_NaN();  // g_T,max, mm
   FrictionTangent frictionTangent = FrictionTangent::Consistent;

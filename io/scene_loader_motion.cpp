@@ -159,7 +159,8 @@ ContactDef readContact(const Json& j, const std::string& path) {
       j, path,
       {"enabled", "proximity_distance", "test_point_spacing", "theta_cross_deg",
        "theta_parallel_deg", "self_contact", "self_contact_separation", "skin", "max_penetration",
-       "regularisation", "initial_penalty", "penalty_change", "penalty_min", "penalty_max", "friction", "max_reversible_slip",
+       "regularisation", "initial_penalty", "penalty_change", "penalty_min", "penalty_max",
+       "step_penetration", "friction", "max_reversible_slip",
        "friction_tangent", "max_detection_loops", "max_normal_loops", "element_placement",
        "friction_hold_after", "friction_hold_tolerance", "normal_update", "normal_acceleration",
        "follow_crossings", "facing_particles", "pairs"});
@@ -179,6 +180,7 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.penaltyChange = f.number("penalty_change", c.penaltyChange);
   c.penaltyMin = f.number("penalty_min", c.penaltyMin);
   c.penaltyMax = f.number("penalty_max", c.penaltyMax);
+  c.stepPenetration = f.number("step_penetration", c.stepPenetration);
   c.friction = f.number("friction", c.friction);
   c.maxReversibleSlip = f.number("max_reversible_slip", c.maxReversibleSlip);
   c.frictionTangent = f.choice(

@@ -405,6 +405,9 @@ void validateContact(const ContactDef& c) {
   if (!(c.penaltyMax >= c.penaltyMin && std::isfinite(c.penaltyMax)))
     fail("contact.penalty_max", "must be finite and >= penalty_min (" + num(c.penaltyMin) +
                                     "), got " + num(c.penaltyMax));
+  if (!(c.stepPenetration >= kStepPenetrationMin && c.stepPenetration <= kStepPenetrationMax))
+    fail("contact.step_penetration", "must be in [" + num(kStepPenetrationMin) + ", " +
+                                         num(kStepPenetrationMax) + "], got " + num(c.stepPenetration));
   nonNegative(c.friction, "contact.friction");
   positiveOrDefault(c.maxReversibleSlip, "contact.max_reversible_slip");
   atLeast(c.maxDetectionLoops, 1, "contact.max_detection_loops");

@@ -153,7 +153,8 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   for (const char* line :
        {"  contact: fibre-fibre, p_max 0.0005 mm, mu 0, theta_cross 20 deg, ",
         "  contact law: penalty 1 .. 10000 x E R, initial penalty E R, change <= x10, p_reg 0.5 "
-        "p_max, g_T,max 0.0005 mm, friction tangent consistent, element placement weighted, normals "
+        "p_max, step limit 10 p_max, g_T,max 0.0005 mm, friction tangent consistent, element "
+        "placement weighted, normals "
         "updated by loop B (Anderson memory 3 when unstable), frictionless parallel normals "
         "linearised in Newton once loop B diverges, "
         "stick/slip held after 2 changes (tolerance 0.01)\n",

@@ -2,6 +2,7 @@
 // normals and gaps (unit, from J to I, odd in the swap of I and J), the documented degenerate
 // cases, and the parameter defaults.
 #include "contact_fixtures.h"
+#include "engine/contact_setup.h"
 #include "systems/contact_detection.h"
 #include "systems/contact_geometry.h"
 #include "systems/contact_normals.h"
@@ -313,6 +314,14 @@ TEST_CASE("parameter defaults follow the radii and element lengths, given values
   def.thetaParallel = 0.1;
   def.skin = -1;
   CHECK_THROWS_AS(resolveContactParams(fs, def), SceneError);
+  // Newton's step limit (contact `step_penetration`) reaches the parameters, within its bounds.
+  SceneDef scene;
+  scene.contact.enabled = true;
+  CHECK(resolveContact(fs, scene).stepPenetration == 10);
+  scene.contact.stepPenetration = 3;
+  CHECK(resolveContact(fs, scene).stepPenetration == 3);
+  scene.contact.stepPenetration = 0.5;
+  CHECK_THROWS_AS(resolveContact(fs, scene), SceneError);
 }
 
 TEST_CASE("a fibre's half-width along a direction normal to it: circle, sheared and stretched sections") {

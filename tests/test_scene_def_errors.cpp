@@ -8,6 +8,8 @@
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+
 using namespace fibra;
 using namespace fibra::test;
 
@@ -38,6 +40,10 @@ TEST_CASE("contact parameters set in code are reported by their scene names") {
         "contact.normal_acceleration: must be in [0, 10], got -1");
   CHECK(errorWith([](ContactDef& c) { c.normalAcceleration = 11; }) ==
         "contact.normal_acceleration: must be in [0, 10], got 11");
+  CHECK(errorWith([](ContactDef& c) { c.stepPenetration = 0.5; }) ==
+        "contact.step_penetration: must be in [1, 1000], got 0.5");
+  CHECK(errorWith([](ContactDef& c) { c.stepPenetration = std::nan(""); }) ==
+        "contact.step_penetration: must be in [1, 1000], got nan");
 }
 
 TEST_CASE("a number beyond a double's range is a scene error naming its field") {

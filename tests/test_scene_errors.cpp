@@ -222,6 +222,8 @@ TEST_CASE("scene errors: out-of-range numbers") {
   CHECK(errorAfter([](Json& j) {
           j["contact"] = {{"penalty_change", 0.5}};
         }) == "s.json: contact.penalty_change: must be >= 1, got 0.5");
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"step_penetration", 2000}}; }) ==
+        "s.json: contact.step_penetration: must be in [1, 1000], got 2000");
   // Lengths against the radii (R = 0.1): contact would be lost, or detection would not end.
   CHECK(errorAfter([](Json& j) { j["contact"] = {{"proximity_distance", 0.19}}; }) ==
         "s.json: contact.proximity_distance: must exceed the sum of two touching fibres' radii "

@@ -58,7 +58,8 @@ const char* const kFullScene = R"({
               "skin": 0.02, "max_penetration": 2e-4, "regularisation": 0.25, "initial_penalty": 100,
               "penalty_change": 4, "friction": 0.1, "max_reversible_slip": 5e-4,
               "friction_tangent": "symmetrised", "max_detection_loops": 5, "max_normal_loops": 2,
-              "friction_hold_after": 3, "friction_hold_tolerance": 0.02, "normal_acceleration": 5},
+              "friction_hold_after": 3, "friction_hold_tolerance": 0.02, "normal_acceleration": 5,
+              "step_penetration": 3},
   "tools": [
     {"name": "floor", "type": "plane", "point": [0, 0, -1], "normal": [0, 0, 1], "friction": 0.2,
      "max_penetration": 1e-4, "displacement": [0, 0, 0.5], "table": "ramp"},
@@ -221,6 +222,7 @@ TEST_CASE("scene loader: every key of the format reaches its Def field") {
   CHECK(k.frictionHoldAfter == 3);
   CHECK(k.frictionHoldTolerance == 0.02);
   CHECK(k.normalAcceleration == 5);
+  CHECK(k.stepPenetration == 3);
 
   const ToolDef& plane = s.tools.at(0);
   CHECK(plane.kind == ToolKind::Plane);
