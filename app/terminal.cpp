@@ -3,6 +3,7 @@
 #include "engine/contact_setup.h"
 #include "engine/free_spin.h"
 #include "engine/torqued_strings.h"
+#include "systems/contact_queries.h"
 #include "systems/interpolation.h"
 #include "systems/linear_solver.h"
 #include "systems/tool_detection.h"
@@ -105,6 +106,22 @@ std::string forcedLines(const SceneDef& s) {
   return out;
 }
 
+// A line when tool t overlaps the fibres by more than kToolStartOverlap p_max in the current
+// state (a scene's start: a tool placed inside the fibres, which the first increment must push
+// out at once); "" otherwise.
+std::string toolStartWarning(const World& world, Index t) {
+  const ToolStore& tools = world.tools();
+  const FibreStore& fs = world.fibres();
+  const ToolOverlap o = toolOverlap(fs, fs.q, tools, t, world.time());
+  if (o.depth <= kToolStartOverlap * tools.pMax[t]) return "";
+  const Index f = fs.nodeFibre[o.node];
+  return format("    warning: %s overlaps the fibres by %.3g mm (%.0f p_max) at t = %g, deepest at "
+                "node %d of fibre '%s': the first increment has to push it out at once (place "
+                "the tool clear of the fibres and move it in)\n",
+                tools.name[t].c_str(), o.depth, o.depth / tools.pMax[t], world.time(),
+                int(o.node - fs.firstNode[f]), fs.name[f].c_str());
+}
+
 // Each tool's kind, friction, p_max and the contact points it takes per fibre element (the
 // range over the fibres: systems/tool_detection.h toolPointsPerElement).
 std::string toolLines(const World& world) {
@@ -131,6 +148,7 @@ std::string toolLines(const World& world) {
                     "overlapped by up to %.3g p_max between two points (finer elements or a "
                     "larger p_max bring it to 0.25)\n",
                     tools.name[t].c_str(), kMaxToolPoints, sagitta / tools.pMax[t]);
+    out += toolStartWarning(world, t);
   }
   return out;
 }
@@ -247,8 +265,16 @@ std::string describeProblem(const World& world, const std::string& scene, int th
 }
 
 void printIteration(const Progress& p) {
-  std::fprintf(stderr, "  step %d  t = %-10.6g load %5.1f%%  iteration %2d  residual %.3e\n",
-               p.step + 1, p.time, 100 * p.loadFactor, p.iteration, p.residual);
+  std::string line = format("  step %d  t = %-10.6g load %5.1f%%  iteration %2d  residual %.3e",
+                            p.step + 1, p.time, 100 * p.loadFactor, p.iteration, p.residual);
+  if (p.stepLength < 1) line += format("  step x%.3g", p.stepLength);
+  if (p.krylovIterations > 0)
+    line += format("  gmres %d to %.1e (asked %.1e)", p.krylovIterations, p.reached, p.tolerance);
+  if (p.activeElements > 0)
+    line += format("  active %d, sliding %d, deepest %.3g p_max", p.activeElements,
+                   p.slidingElements, p.deepest);
+  if (!p.largest.empty()) line += "  largest at " + p.largest;
+  std::fprintf(stderr, "%s\n", line.c_str());
 }
 
 void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {

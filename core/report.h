@@ -22,7 +22,8 @@ enum class StepStatus {
 struct NewtonRecord {
   double residual;     // |r_free| / reference force, after the iteration
   double increment;    // |dq| of the iteration, mm (mixed DOFs: max-norm)
-  double lineSearch;   // step length taken
+  double lineSearch;   // step length taken, in (0, 1]: < 1 where the contact step limit, a
+                       // halving for a non-finite residual or the line search cut the step
 };
 
 struct Progress {
@@ -31,6 +32,18 @@ struct Progress {
   double loadFactor; // fraction of the current step reached
   int iteration;     // Newton iteration within the attempt
   double residual;   // relative residual after that iteration
+  double stepLength; // share of the Newton step taken, in (0, 1] (NewtonRecord::lineSearch)
+  // the iteration's Krylov solve (all 0 for a direct one): the relative tolerance asked, the
+  // relative residual |K dq + r| / |r| reached, GMRES iterations
+  double tolerance, reached;
+  int krylovIterations;
+  // contact at the iterate (0 without contact): elements with a normal force, of them those
+  // sliding (friction >= 99% of mu R_N), and the deepest penetration / p_max over all elements
+  int activeElements, slidingElements;
+  double deepest;
+  // the free DOF with the largest residual (directors' moments / the length scale, as in the
+  // relative residual): "fibre 'NAME' node N x" (N from 0 along the fibre; x, y, z or g1x ... g2z)
+  std::string largest;
 };
 
 struct StepTimings {  // seconds of wall time in this increment, all attempts together

@@ -20,6 +20,7 @@
 #include "engine/world_state.h"
 #include "systems/beam_evaluation.h"
 #include "systems/boundary.h"
+#include "systems/contact_queries.h"
 #include "systems/element_stretch.h"
 #include "systems/energy_balance.h"
 #include "systems/newton.h"
@@ -171,6 +172,36 @@ void rejectFolded(const WorldState& w, NewtonResult& r) {
               ": a spurious state of the Saint Venant-Kirchhoff energy)";
 }
 
+// Where the free residual is largest (Progress::largest).
+std::string largestResidual(const WorldState& w) {
+  static const char* const component[kNodeDofs] = {"x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z"};
+  Index best = -1;
+  double m = -1;
+  for (Index d = 0; d < w.system.r.size(); ++d) {
+    if (w.system.equation[d] < 0) continue;
+    const double v = std::abs(w.system.r(d)) * (d % kNodeDofs < 3 ? 1.0 : 1 / w.lengthScale);
+    if (v > m) m = v, best = d;
+  }
+  if (best < 0) return "";
+  const Index node = best / kNodeDofs, f = w.fibres.nodeFibre[node];
+  return "fibre '" + w.fibres.name[f] + "' node " + std::to_string(node - w.fibres.firstNode[f]) + " " +
+         component[best % kNodeDofs];
+}
+
+// What the progress callback is told after Newton iteration `it` of the attempt at tTry.
+Progress progressOf(const WorldState& w, const NewtonRecord& rec, int it, double tTry, double load) {
+  const LinearSolveStats& ls = w.solver.stats();
+  Progress p{w.step, tTry, load, it, rec.residual, rec.lineSearch, ls.lastTolerance, ls.lastReached,
+             ls.lastKrylovIterations, 0, 0, 0, {}};
+  if (hasContact(w)) {
+    ContactReport c;
+    fillContactReport(w.contact, w.trial, c);
+    p.activeElements = c.active, p.slidingElements = c.sliding, p.deepest = c.maxPenetrationRatio;
+  }
+  p.largest = largestResidual(w);
+  return p;
+}
+
 NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStart,
                      StepReport& rep) {
   StepTimings& timings = rep.timings;
@@ -181,8 +212,8 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
   cb.cancel = [&w] { return w.cancel(); };
   if (w.def.progress) {
     const double span = st.endTime - tStart;
-    cb.progress = [&w, tTry, tStart, span](int it, double residual) {
-      w.def.progress({w.step, tTry, (tTry - tStart) / span, it, residual});
+    cb.progress = [&w, tTry, tStart, span](int it, const NewtonRecord& rec) {
+      w.def.progress(progressOf(w, rec, it, tTry, (tTry - tStart) / span));
     };
   }
   const NewtonSettings settings = newtonSettings(w, st);

@@ -3,6 +3,7 @@
 #include "systems/contact_geometry.h"
 #include "systems/facing_particles.h"
 #include "systems/particle.h"
+#include "systems/tool_geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -54,6 +55,19 @@ void fillContactReport(const ContactParams& p, const ContactState& s, ContactRep
   for (Index e = 0; e < s.elements.size(); ++e) add(s.forces, e, s.zones.pMax[s.elements.zone[e]]);
   for (Index i = 0; i < s.toolElements.size(); ++i)
     add(s.toolForces, i, s.toolZones.pMax[s.toolElements.zone[i]]);
+}
+
+ToolOverlap toolOverlap(const FibreStore& fibres, const Eigen::VectorXd& q, const ToolStore& tools,
+                        Index tool, double time) {
+  const RigidMotion m = toolMotion(tools, tool, time);
+  ToolOverlap o;
+  for (Index n = 0; n < fibres.nodes(); ++n) {
+    const SurfacePoint p = closestSurfacePoint(tools, tool, m, x0Of(q, n));
+    const Vec3 g1 = q.segment<3>(kNodeDofs * n + 3), g2 = q.segment<3>(kNodeDofs * n + 6);
+    const double w = fibres.radius[fibres.nodeFibre[n]] * std::hypot(g1.dot(p.normal), g2.dot(p.normal));
+    if (w - p.distance > o.depth) o.depth = w - p.distance, o.node = n;
+  }
+  return o;
 }
 
 double halfWidth(const Section& S, double R, const Vec3& n) {

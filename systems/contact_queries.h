@@ -38,10 +38,16 @@
 //                     like for like) and the largest particle
 //                     shift sqrt(ds^2 + |dxi|^2) / R of either side (s arc length, xi section
 //                     coordinates, R the side's radius).
+// toolOverlap         a tool's deepest overlap with the fibres at the nodes: max over nodes of
+//                     w - s, s the node's signed distance from the tool's surface at time t and
+//                     w = R |G^T n| the section's half-width along the surface normal n there
+//                     (G = [g1 g2] the node's directors); from the state alone, with no contact
+//                     element. The scene check's warning for a tool placed inside the fibres.
 #pragma once
 
 #include "components/contact_params.h"
 #include "components/contact_state.h"
+#include "components/tools.h"
 #include "core/report.h"
 #include "systems/interpolation.h"
 
@@ -80,6 +86,18 @@ struct Overlap {
 };
 Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
                     const ContactState& detected);
+
+// Tool `tool`'s deepest overlap with the fibres' nodes of state q at pseudo-time t (mm; 0 and
+// node -1 when no node overlaps it), the node's global index.
+struct ToolOverlap {
+  double depth = 0;
+  Index node = -1;
+};
+// A tool overlapping the fibres by more than this many of its p_max in a state `fibra check` and
+// `fibra run` describe is warned of (a tool placed inside the fibres, not one in light contact).
+inline constexpr double kToolStartOverlap = 10;
+ToolOverlap toolOverlap(const FibreStore& fibres, const Eigen::VectorXd& q, const ToolStore& tools,
+                        Index tool, double time);
 
 // Fills r.redetectZoneChanges, redetectGapChange, redetectParticleShift.
 void compareContactSets(const FibreStore& fibres, const ContactState& used,

@@ -301,6 +301,9 @@ GmresResult LinearSolver::Impl::gmresOnce(const Eigen::VectorXd& b, Eigen::Vecto
   span.items(r.iterations);
   stats.krylovIterations += r.iterations;
   stats.maxKrylovIterations = std::max(stats.maxKrylovIterations, r.iterations);
+  stats.lastKrylovIterations += r.iterations;
+  stats.lastTolerance = g.tolerance;
+  stats.lastReached = r.residual;
   return r;
 }
 
@@ -439,6 +442,9 @@ void LinearSolver::Impl::schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd&
   }
   stats.krylovIterations += r.iterations;
   stats.maxKrylovIterations = std::max(stats.maxKrylovIterations, r.iterations);
+  stats.lastKrylovIterations += r.iterations;
+  stats.lastTolerance = g.tolerance;
+  stats.lastReached = r.residual;
   if (r.converged) return;
   ++stats.krylovFailures;
   if (keepsInexactMiss(g.tolerance, krylov.tolerance, r.residual)) return;
@@ -520,6 +526,8 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) { solve(b
 void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double forcing) {
   Impl& m = *impl_;
   m.forcing = forcing;
+  m.stats.lastKrylovIterations = 0;
+  m.stats.lastTolerance = m.stats.lastReached = 0;
   if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
   Span span(m.trace, "solve", "solver");
   span.items(1);

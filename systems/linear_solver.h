@@ -86,6 +86,10 @@ struct LinearSolveStats {
   int shifted = 0;             // factorisations that needed sigma > 0
   int krylovFailures = 0;      // solves that missed the tolerance even with a fresh factor
   double shift = 0;            // sigma of the last factorisation
+  // the last solve (0 for a direct one): its GMRES iterations (all tries), the relative
+  // tolerance asked and the relative residual |K x - b| / |b| its last GMRES reached
+  int lastKrylovIterations = 0;
+  double lastTolerance = 0, lastReached = 0;
   // MUMPS analyses (Mumps, Schwarz's fallback, Auto)
   double flopsPerEntry = 0;    // the last analysis's estimated factorisation flops (RINFOG(1))
                                // per non-zero of K (dimensionless)

@@ -189,7 +189,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     res.residual = residual;
     res.smallest = std::min(res.smallest, residual);
     res.history.push_back({residual, alpha * c.scaledMax(c.dq), alpha});
-    if (cb.progress) cb.progress(it, residual);
+    if (cb.progress) cb.progress(it, res.history.back());
     if (!std::isfinite(residual)) {
       res.message = "non-finite residual at iteration " + std::to_string(it);
       return res;

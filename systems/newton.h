@@ -88,7 +88,7 @@ struct NewtonCallbacks {
   // Largest step length in (0, 1] along the full-DOF direction dq from the current q (contact:
   // no element may close deeper than a few p_max in one step); none: 1.
   std::function<double(const Eigen::VectorXd& dq)> stepLimit;
-  std::function<void(int iteration, double residual)> progress;
+  std::function<void(int iteration, const NewtonRecord& record)> progress;  // after each iteration
   std::function<bool()> cancel;
 };
 

@@ -81,6 +81,20 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
   CHECK(countLines(t.output, R"(^    note: roller caps at 32 points per element: a fibre across it may be )"
                              R"(overlapped by up to 36.5 p_max between two points \(finer elements or a larger )"
                              R"(p_max bring it to 0.25\)$)") == 1);
+  // The roller 0.05 mm thicker starts 0.05 mm inside the fibre (centreline 1.1 mm from the
+  // axis, R = 0.1 mm), at its middle node (16 of 0 .. 32); 0.0004 mm thicker, 0.8 p_max: in light
+  // contact, no warning.
+  roller = nlohmann::json::parse(readFile(sourcePath("samples/roller_drag.json")), nullptr, true, true);
+  roller["tools"][0]["radius"] = 1.05;
+  roller["tools"][0]["max_penetration"] = 5e-4;
+  writeFile(scratch / "inside_roller.json", roller.dump());
+  const std::string inside = runFibra({"check", scratch / "inside_roller.json"}, scratch).output;
+  CHECK(countLines(inside, R"(^    warning: roller overlaps the fibres by 0.05 mm \(100 p_max\) at t = 0, )"
+                           R"(deepest at node 16 of fibre 'f': the first increment has to push it out )") == 1);
+  roller["tools"][0]["radius"] = 1.0004;
+  writeFile(scratch / "touching_roller.json", roller.dump());
+  CHECK(runFibra({"check", scratch / "touching_roller.json"}, scratch).output.find("warning") ==
+        std::string::npos);
   CHECK(countLines(r.output, "^step ") == 0);  // nothing solved
   const std::string bad = sourcePath("samples/bad/negative_radius.json");
   const RunResult b = runFibra({"check", bad}, scratch);

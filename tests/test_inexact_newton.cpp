@@ -147,6 +147,52 @@ TEST_CASE("inexact Newton reaches the exact solves' states on a frictional bundl
   CHECK((q[1] - q[0]).lpNorm<Eigen::Infinity>() <= 1e-8);
 }
 
+TEST_CASE("progress after each Newton iteration: step length, the GMRES solve and the contact counts") {
+  // The 7-fibre squeeze's first increment with Schwarz and the forcing term up to 0.1, and with
+  // the direct strategy. Every iteration is reported; the last one's contact counts are those of
+  // the accepted state, which the report computes apart.
+  for (const LinearStrategy strategy : {LinearStrategy::Schwarz, LinearStrategy::Direct}) {
+    const bool krylov = strategy == LinearStrategy::Schwarz;
+    CAPTURE(krylov);
+    SceneDef scene = scenes::bundle(1, 10, 0.01, 5e-4, 0.1);
+    scene.solver.strategy = strategy;
+    if (krylov) scene.solver.krylov.forcingMax = 0.1;
+    std::vector<Progress> seen;
+    WorldDef def;
+    def.threads = 1;
+    def.progress = [&](const Progress& p) { seen.push_back(p); };
+    World w(scene, def);
+    const StepReport rep = w.step();
+    REQUIRE(rep.status == StepStatus::Converged);
+    REQUIRE(int(seen.size()) == rep.totalIterations);
+    int gmres = 0;
+    for (const Progress& p : seen) {
+      CHECK(p.stepLength > 0);
+      CHECK(p.stepLength <= 1);
+      gmres += p.krylovIterations;
+      if (krylov) {
+        CHECK(p.krylovIterations > 0);
+        CHECK(p.tolerance >= 1e-8);
+        CHECK(p.tolerance <= 0.1);
+        // met, or kept within 10x and 0.1 (systems/linear_solver.h), or redone exactly
+        CHECK((p.reached <= std::min(0.1, 10 * p.tolerance) || rep.linear.fallbacks > 0));
+      } else {
+        CHECK(p.krylovIterations == 0);
+        CHECK(p.tolerance == 0);
+        CHECK(p.reached == 0);
+      }
+      CHECK(p.largest.starts_with("fibre 'f"));
+    }
+    // the records leave out only the exact solve that checks the converged increment
+    CHECK(gmres <= rep.linear.krylovIterations);
+    if (krylov) CHECK(gmres > 0);
+    CHECK(seen.back().activeElements == rep.contact.active);
+    CHECK(seen.back().slidingElements == rep.contact.sliding);
+    CHECK(seen.back().deepest == doctest::Approx(rep.contact.maxPenetrationRatio));
+    CHECK(rep.contact.active > 0);
+  }
+}
+
 TEST_CASE("the solver section's forcing_max: read, bounded, and only for the GMRES strategies") {
   const auto scene = [](const std::string& solver) {
     return R"({"units": "mm-N-MPa", "materials": [{"name": "m", "young_modulus": 4000}],

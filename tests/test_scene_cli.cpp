@@ -139,6 +139,11 @@ TEST_CASE(
   REQUIRE(r.status == 0);
   CHECK(r.output.find("step 1/1  increment 10/10  t = 1 ") != std::string::npos);
   CHECK(r.output.find("iteration  1  residual") != std::string::npos);  // --verbose
+  // a direct solve, no contact, full steps: the residual's largest component and nothing else
+  CHECK(std::regex_search(r.output, std::regex(R"(iteration  1  residual [0-9.e+-]+  largest at fibre )"
+                                               R"('[^']+' node \d+ (x|y|z|g[12][xyz])\n)")));
+  CHECK(r.output.find("gmres") == std::string::npos);
+  CHECK(r.output.find("active") == std::string::npos);
 
   // Frames: the initial state and the ten increments, each listed once with its time.
   const auto frames = pvdFrames(out + "/result.pvd");

@@ -7,6 +7,7 @@
 #include "engine/contact_loops.h"
 #include "engine/world_state.h"
 #include "fd_tangent.h"
+#include "systems/contact_queries.h"
 #include "systems/interpolation.h"
 #include "systems/tool_contact.h"
 #include "systems/tool_detection.h"
@@ -208,6 +209,39 @@ TEST_CASE("a fibre pressed across a cylinder overlaps it by at most p_max plus t
     MESSAGE("elements " << elements << ": deepest overlap " << deepest / pMax << " p_max");
     CHECK(deepest > 0);             // the fibre does bear on the cylinder
     CHECK(deepest <= 1.25 * pMax);  // p_max at the points, the sagitta p_max / 4 between them
+  }
+}
+
+TEST_CASE("a tool's overlap with the fibres at the nodes, from the state alone") {
+  // dragScene's fibre (R = 0.1 mm, centreline 1.1 mm from the roller's axis) with the roller
+  // radius 1.05: 0.05 mm deep at the middle node, x = 0, over the crest (every other node is
+  // farther from the axis); a plane 0.07 mm above the centreline; then both moved clear.
+  SceneDef s = dragScene(0.01, 0, 0, 1);
+  s.tools[0].radius = 1.05;
+  ToolDef plane;  // above the fibre, normal -z: its lower side faces it
+  plane.name = "lid";
+  plane.kind = ToolKind::Plane;
+  plane.point = Vec3(0, 0, 1.17);
+  plane.direction = -Vec3::UnitZ();
+  s.tools.push_back(plane);
+  World w(s);
+  const FibreStore& fs = w.fibres();
+  const ToolOverlap roller = toolOverlap(fs, fs.q, w.tools(), 0, 0);
+  CHECK(roller.depth == doctest::Approx(0.05).epsilon(1e-12));
+  REQUIRE(roller.node >= 0);
+  CHECK(std::abs(x0Of(fs.q, roller.node).x()) < 1e-12);
+  // the plane 0.07 mm above the centreline: 0.03 mm into every node's section (the first named)
+  const ToolOverlap lid = toolOverlap(fs, fs.q, w.tools(), 1, 0);
+  CHECK(lid.depth == doctest::Approx(0.03).epsilon(1e-12));
+  CHECK(lid.node == 0);
+  // moved clear of the fibre: nothing
+  s.tools[1].point = Vec3(0, 0, 1.3);
+  s.tools[0].radius = 0.9;
+  World clear(s);
+  for (Index t : {0, 1}) {
+    const ToolOverlap o = toolOverlap(clear.fibres(), clear.fibres().q, clear.tools(), t, 0);
+    CHECK(o.depth == 0);
+    CHECK(o.node == -1);
   }
 }
 
