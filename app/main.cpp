@@ -390,6 +390,8 @@ int run(const Options& o) {
     if (o.resume)
       std::fprintf(stderr, "fibra: resuming %s at t = %g (step %d of %d)\n", o.out.c_str(),
                    world->time(), std::min(world->currentStep() + 1, steps), steps);
+  } else {
+    std::fputs(terminal::toolStartWarnings(*world).c_str(), stderr);
   }
   // From here on a signal stops the run cleanly: one that arrives while the outputs are being
   // created cancels the first increment, so the initial state is written and no .part is left.

@@ -106,20 +106,21 @@ std::string forcedLines(const SceneDef& s) {
   return out;
 }
 
-// A line when tool t overlaps the fibres by more than kToolStartOverlap p_max in the current
-// state (a scene's start: a tool placed inside the fibres, which the first increment must push
-// out at once); "" otherwise.
+// A line when tool t overlaps the fibres by more than kToolStartOverlap p_max at the scene's start
+// (a tool placed inside the fibres, which the first increment must push out at once); "" otherwise,
+// and on a resumed run (whose tools may be in contact).
 std::string toolStartWarning(const World& world, Index t) {
   const ToolStore& tools = world.tools();
   const FibreStore& fs = world.fibres();
-  const ToolOverlap o = toolOverlap(fs, fs.q, tools, t, world.time());
+  if (world.time() != 0) return "";
+  const ToolOverlap o = toolOverlap(fs, fs.q, tools, t, 0);
   if (o.depth <= kToolStartOverlap * tools.pMax[t]) return "";
-  const Index f = fs.nodeFibre[o.node];
-  return format("    warning: %s overlaps the fibres by %.3g mm (%.0f p_max) at t = %g, deepest at "
-                "node %d of fibre '%s': the first increment has to push it out at once (place "
-                "the tool clear of the fibres and move it in)\n",
-                tools.name[t].c_str(), o.depth, o.depth / tools.pMax[t], world.time(),
-                int(o.node - fs.firstNode[f]), fs.name[f].c_str());
+  const Index f = fs.elementFibre[o.element];
+  return format("    warning: %s overlaps the fibres by %.3g mm (%.3g p_max) at the start, deepest "
+                "at s = %.4g mm along fibre '%s': the first increment has to push it out at once "
+                "(place the tool clear of the fibres and move it in)\n",
+                tools.name[t].c_str(), o.depth, o.depth / tools.pMax[t],
+                arcLength(fs, o.element, o.z), fs.name[f].c_str());
 }
 
 // Each tool's kind, friction, p_max and the contact points it takes per fibre element (the
@@ -261,6 +262,12 @@ std::string describeProblem(const World& world, const std::string& scene, int th
   out += solverLine(s);
   if (threads >= 0)
     out += format("  threads: %d\n", threads > 0 ? threads : tbb::info::default_concurrency());
+  return out;
+}
+
+std::string toolStartWarnings(const World& world) {
+  std::string out;
+  for (Index t = 0; t < world.tools().size(); ++t) out += toolStartWarning(world, t);
   return out;
 }
 

@@ -18,6 +18,10 @@ enum class Verbosity { Quiet, Normal, Verbose };  // errors and summary; + incre
 // threads. Each line starts with "  " after a first line "fibra VERSION: SCENE".
 std::string describeProblem(const World& world, const std::string& scene, int threads);
 
+// The tools' start warnings of describeProblem alone (a tool placed inside the fibres), for
+// --quiet, which prints no description.
+std::string toolStartWarnings(const World& world);
+
 void printIteration(const Progress& p);
 void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v);
 

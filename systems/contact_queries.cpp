@@ -61,11 +61,15 @@ ToolOverlap toolOverlap(const FibreStore& fibres, const Eigen::VectorXd& q, cons
                         Index tool, double time) {
   const RigidMotion m = toolMotion(tools, tool, time);
   ToolOverlap o;
-  for (Index n = 0; n < fibres.nodes(); ++n) {
-    const SurfacePoint p = closestSurfacePoint(tools, tool, m, x0Of(q, n));
-    const Vec3 g1 = q.segment<3>(kNodeDofs * n + 3), g2 = q.segment<3>(kNodeDofs * n + 6);
-    const double w = fibres.radius[fibres.nodeFibre[n]] * std::hypot(g1.dot(p.normal), g2.dot(p.normal));
-    if (w - p.distance > o.depth) o.depth = w - p.distance, o.node = n;
+  for (Index e = 0; e < fibres.elements(); ++e) {
+    const double R = fibres.radius[fibres.elementFibre[e]];
+    for (int k = 0; k <= kToolOverlapCuts; ++k) {
+      const double z = -1 + 2.0 * k / kToolOverlapCuts;
+      const Section S = sectionAt(fibres, q, {e, z});
+      const SurfacePoint p = closestSurfacePoint(tools, tool, m, S.x0);
+      const double depth = halfWidth(S, R, p.normal) - p.distance;
+      if (depth > o.depth) o = {depth, e, z};
+    }
   }
   return o;
 }

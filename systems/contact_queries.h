@@ -38,11 +38,13 @@
 //                     like for like) and the largest particle
 //                     shift sqrt(ds^2 + |dxi|^2) / R of either side (s arc length, xi section
 //                     coordinates, R the side's radius).
-// toolOverlap         a tool's deepest overlap with the fibres at the nodes: max over nodes of
-//                     w - s, s the node's signed distance from the tool's surface at time t and
+// toolOverlap         a tool's deepest overlap with the fibres: max over sections of w - d, d the
+//                     centroid's signed distance from the tool's surface at time t and
 //                     w = R |G^T n| the section's half-width along the surface normal n there
-//                     (G = [g1 g2] the node's directors); from the state alone, with no contact
-//                     element. The scene check's warning for a tool placed inside the fibres.
+//                     (G = [g1 g2] the section's directors), the sections at kToolOverlapCuts + 1
+//                     evenly spaced parameters of every element (its end nodes among them); from
+//                     the state alone, with no contact element. The scene check's warning for a
+//                     tool placed inside the fibres.
 #pragma once
 
 #include "components/contact_params.h"
@@ -87,14 +89,16 @@ struct Overlap {
 Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
                     const ContactState& detected);
 
-// Tool `tool`'s deepest overlap with the fibres' nodes of state q at pseudo-time t (mm; 0 and
-// node -1 when no node overlaps it), the node's global index.
+// Tool `tool`'s deepest overlap with the fibres of state q at pseudo-time t (mm; 0 and element -1
+// when none overlaps it), and where: the element and its parameter z in [-1, 1].
 struct ToolOverlap {
   double depth = 0;
-  Index node = -1;
+  Index element = -1;
+  double z = 0;
 };
-// A tool overlapping the fibres by more than this many of its p_max in a state `fibra check` and
-// `fibra run` describe is warned of (a tool placed inside the fibres, not one in light contact).
+inline constexpr int kToolOverlapCuts = 8;  // pieces of an element between the sampled sections
+// A tool overlapping the fibres by more than this many of its p_max at a scene's start is warned
+// of by `fibra check` and `fibra run` (a tool placed inside the fibres, not one in light contact).
 inline constexpr double kToolStartOverlap = 10;
 ToolOverlap toolOverlap(const FibreStore& fibres, const Eigen::VectorXd& q, const ToolStore& tools,
                         Index tool, double time);

@@ -82,15 +82,19 @@ TEST_CASE("fibra check validates a scene and prints its size without solving") {
                              R"(overlapped by up to 36.5 p_max between two points \(finer elements or a larger )"
                              R"(p_max bring it to 0.25\)$)") == 1);
   // The roller 0.05 mm thicker starts 0.05 mm inside the fibre (centreline 1.1 mm from the
-  // axis, R = 0.1 mm), at its middle node (16 of 0 .. 32); 0.0004 mm thicker, 0.8 p_max: in light
-  // contact, no warning.
+  // axis, R = 0.1 mm), over its crest at s = 2 mm of the 4 mm fibre; 0.0004 mm thicker, 0.8 p_max:
+  // in light contact, no warning. --quiet prints the warning alone.
   roller = nlohmann::json::parse(readFile(sourcePath("samples/roller_drag.json")), nullptr, true, true);
   roller["tools"][0]["radius"] = 1.05;
   roller["tools"][0]["max_penetration"] = 5e-4;
   writeFile(scratch / "inside_roller.json", roller.dump());
   const std::string inside = runFibra({"check", scratch / "inside_roller.json"}, scratch).output;
-  CHECK(countLines(inside, R"(^    warning: roller overlaps the fibres by 0.05 mm \(100 p_max\) at t = 0, )"
-                           R"(deepest at node 16 of fibre 'f': the first increment has to push it out )") == 1);
+  CHECK(countLines(inside, R"(^    warning: roller overlaps the fibres by 0.05 mm \(100 p_max\) at the start, )"
+                           R"(deepest at s = 2 mm along fibre 'f': the first increment has to push it )"
+                           R"(out at once )") == 1);
+  const RunResult quiet =
+      runFibra({"run", scratch / "inside_roller.json", "--out", scratch / "inside", "--quiet"}, scratch);
+  CHECK(countLines(quiet.output, R"(^    warning: roller overlaps the fibres by 0.05 mm)") == 1);
   roller["tools"][0]["radius"] = 1.0004;
   writeFile(scratch / "touching_roller.json", roller.dump());
   CHECK(runFibra({"check", scratch / "touching_roller.json"}, scratch).output.find("warning") ==

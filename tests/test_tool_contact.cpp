@@ -212,10 +212,13 @@ TEST_CASE("a fibre pressed across a cylinder overlaps it by at most p_max plus t
   }
 }
 
-TEST_CASE("a tool's overlap with the fibres at the nodes, from the state alone") {
-  // dragScene's fibre (R = 0.1 mm, centreline 1.1 mm from the roller's axis) with the roller
-  // radius 1.05: 0.05 mm deep at the middle node, x = 0, over the crest (every other node is
-  // farther from the axis); a plane 0.07 mm above the centreline; then both moved clear.
+TEST_CASE("a tool's overlap with the fibres, from the state alone") {
+  // dragScene's fibre (R = 0.1 mm, centreline 1.1 mm from the roller's axis, 16 elements of
+  // 0.25 mm) with the roller radius 1.05: 0.05 mm deep over the crest, x = 0 (the end of element
+  // 7); a plane 0.07 mm above the centreline: 0.03 mm into every section; a thin cylinder (radius
+  // 0.05 mm) across the fibre between two nodes, its axis 0.1 mm above the centreline at
+  // x = 0.0625 mm (z = -0.5 in element 8, between its end and middle nodes: quadratic elements):
+  // 0.05 mm deep there; then all clear.
   SceneDef s = dragScene(0.01, 0, 0, 1);
   s.tools[0].radius = 1.05;
   ToolDef plane;  // above the fibre, normal -z: its lower side faces it
@@ -224,24 +227,35 @@ TEST_CASE("a tool's overlap with the fibres at the nodes, from the state alone")
   plane.point = Vec3(0, 0, 1.17);
   plane.direction = -Vec3::UnitZ();
   s.tools.push_back(plane);
+  ToolDef pin;
+  pin.name = "pin";
+  pin.kind = ToolKind::Cylinder;
+  pin.point = Vec3(0.0625, 0, 1.2);
+  pin.direction = Vec3::UnitY();
+  pin.radius = 0.05;
+  s.tools.push_back(pin);
   World w(s);
   const FibreStore& fs = w.fibres();
+  const auto at = [&](const ToolOverlap& o) { return sectionAt(fs, fs.q, {o.element, o.z}).x0; };
   const ToolOverlap roller = toolOverlap(fs, fs.q, w.tools(), 0, 0);
   CHECK(roller.depth == doctest::Approx(0.05).epsilon(1e-12));
-  REQUIRE(roller.node >= 0);
-  CHECK(std::abs(x0Of(fs.q, roller.node).x()) < 1e-12);
-  // the plane 0.07 mm above the centreline: 0.03 mm into every node's section (the first named)
+  REQUIRE(roller.element >= 0);
+  CHECK(std::abs(at(roller).x()) < 1e-12);
   const ToolOverlap lid = toolOverlap(fs, fs.q, w.tools(), 1, 0);
   CHECK(lid.depth == doctest::Approx(0.03).epsilon(1e-12));
-  CHECK(lid.node == 0);
+  const ToolOverlap between = toolOverlap(fs, fs.q, w.tools(), 2, 0);
+  CHECK(between.depth == doctest::Approx(0.05).epsilon(1e-12));
+  CHECK(at(between).x() == doctest::Approx(0.0625).epsilon(1e-12));
+  CHECK(between.z == -0.5);  // between two nodes
   // moved clear of the fibre: nothing
-  s.tools[1].point = Vec3(0, 0, 1.3);
   s.tools[0].radius = 0.9;
+  s.tools[1].point = Vec3(0, 0, 1.3);
+  s.tools[2].point = Vec3(0.0625, 0, 1.3);
   World clear(s);
-  for (Index t : {0, 1}) {
+  for (Index t : {0, 1, 2}) {
     const ToolOverlap o = toolOverlap(clear.fibres(), clear.fibres().q, clear.tools(), t, 0);
     CHECK(o.depth == 0);
-    CHECK(o.node == -1);
+    CHECK(o.element == -1);
   }
 }
 
