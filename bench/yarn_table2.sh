@@ -8,7 +8,8 @@
 #   - the median cross-section (z = 0.25 mm) at the start, after the equilibrium, after the twist
 #     and at four stages of the crush (fibra section: PNGs and outlines), the fibres' spacing and
 #     density at the periphery against the centre on each (bench/yarn_density.py);
-#   - the fibres' true overlap at the end from the centrelines (bench/centreline_overlap.py);
+#   - with OVERLAP=1, the fibres' true overlap at the end from the centrelines
+#     (bench/centreline_overlap.py; over 10 minutes at this size);
 #   - the crushing force against the travel (the scene's plots, drawn by fibra at the end).
 # usage: bash bench/yarn_table2.sh [OUT_DIR [THREADS]]   (default out/yarn_table2, 2 threads)
 # A run stopped on the way goes on with `fibra run --resume OUT_DIR`; this script's second part
@@ -62,4 +63,7 @@ rm -f "$history.frames"
 "$fibra" section "$out" --plane z=0.25 --frame "$frames" --out "$out/section.png" \
   --title '250-fibre yarn, median cross-section'
 python3 "$root/bench/yarn_density.py" "$out"/section_*.dat
-python3 "$root/bench/centreline_overlap.py" "$out/final_state.csv" --radius 0.01 --pmax 1e-4
+# all pairs of 250 fibres in Python: more than 10 minutes, so only when asked (OVERLAP=1)
+if [ -n "${OVERLAP:-}" ]; then
+  python3 "$root/bench/centreline_overlap.py" "$out/final_state.csv" --radius 0.01 --pmax 1e-4
+fi
