@@ -33,6 +33,7 @@
 #include "app/pictures.h"
 #include "app/study.h"
 #include "app/terminal.h"
+#include "core/allocator.h"
 #include "engine/world.h"
 #include "fibra/version.h"
 #include "io/output_file.h"
@@ -474,6 +475,7 @@ int expand(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "--help" || command == "-h" || command == "help") {
     std::fputs(kUsage, stdout);

@@ -10,7 +10,8 @@
 //       umfpack-best, UMFPACK trying several orderings and keeping the best; mumps-blr<eps>,
 //       e.g. mumps-blr1e-6, the mumps strategy with a block low-rank factor of accuracy eps
 //       inside GMRES (mumps-blr alone: 1e-6); mumps-full, mumps given a symmetric K in full,
-//       LU instead of LDL^T)
+//       LU instead of LDL^T; any name ending in -nz, e.g. cholmod-nz: that one on K without
+//       its explicit zeros, analysis included)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
 //       [--coarse-segments 8] (schwarz) [--forcing-max 0,1e-2] (inexact Newton, each value
 //       with each Newton strategy; 0: every solve to the Krylov tolerance)
@@ -28,6 +29,7 @@
 // Newton (--newton N): the first N increments of the scene with each strategy, per increment
 // the Newton iterations, wall time, and the solver's counts.
 #include "bench/tangent_cases.h"
+#include "core/allocator.h"
 
 #include <Eigen/UmfPackSupport>
 
@@ -131,9 +133,10 @@ void newton(const Options& o) {
       auto last = std::chrono::steady_clock::now();
       w.def.progress = [&](const Progress& p) {  // one line per Newton iteration
         const LinearSolveStats& st = w.solver.stats();
-        std::printf("    t %.3f it %2d residual %.2e  %.2f s  (factorisations %d, krylov it %d, shift %.0e)\n", p.time,
-                    p.iteration, p.residual, bench::seconds([] {}) + std::chrono::duration<double>(
-                    std::chrono::steady_clock::now() - last).count(), st.factorisations, st.krylovIterations, st.shift);
+        std::printf("    t %.3f it %2d residual %.2e  %.2f s  (factorisations %d, krylov it %d, shift %.0e, "
+                    "resident %.2f GiB)\n", p.time, p.iteration, p.residual, bench::seconds([] {}) +
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - last).count(),
+                    st.factorisations, st.krylovIterations, st.shift, statusGiB("VmRSS:"));
         last = std::chrono::steady_clock::now();
       };
       buildWorld(w);
@@ -143,6 +146,7 @@ void newton(const Options& o) {
       }
       int iterations = 0, krylovIterations = 0, fallbacks = 0;
       double wall = 0, assemble = 0, factorise = 0, solve = 0;
+      double schwarz[8] = {};  // LinearSolveStats::schwarz*, summed over the increments
       for (int inc = 1; inc <= o.newton; ++inc) {
         StepReport rep;
         const double t = bench::seconds([&] { rep = advance(w); });
@@ -157,6 +161,10 @@ void newton(const Options& o) {
                     st.flopsPerEntry, st.schwarzChoices);
         iterations += rep.totalIterations;
         krylovIterations += st.krylovIterations, fallbacks += st.fallbacks;
+        const double parts[8] = {st.schwarzBlocks, st.schwarzCoarse, st.schwarzCoarseSolve,
+                                 st.schwarzCoarseProduct, st.schwarzBlockSolve, st.schwarzProduct,
+                                 st.schwarzCoarseMatrix, st.schwarzCoarseAnalyse};
+        for (int k = 0; k < 8; ++k) schwarz[k] += parts[k];
         wall += t, assemble += rep.timings.assemble, factorise += rep.timings.factorise, solve += rep.timings.solve;
         if (rep.status != StepStatus::Converged) break;
       }
@@ -164,6 +172,12 @@ void newton(const Options& o) {
                   "solve %.3f), krylov it %d, fallbacks %d, peak %.2f GiB\n", threads, name.c_str(), iterations,
                   wall, wall / iterations, assemble / iterations, factorise / iterations, solve / iterations,
                   krylovIterations, fallbacks, peakGiB());
+      if (schwarz[0] + schwarz[1] > 0)
+        std::printf("  thr %d %-8s Schwarz per iteration: build blocks %.3f coarse %.3f (Phi and A_c %.3f, analysis %.3f); in GMRES coarse "
+                    "solves %.3f, K y_c %.3f, block solves %.3f, K v %.3f s\n", threads, name.c_str(),
+                    schwarz[0] / iterations, schwarz[1] / iterations, schwarz[6] / iterations,
+                    schwarz[7] / iterations, schwarz[2] / iterations,
+                    schwarz[3] / iterations, schwarz[4] / iterations, schwarz[5] / iterations);
       if (firstQ.size() == 0) firstQ = w.fibres.q;
       else if (firstQ.size() == w.fibres.q.size())
         std::printf("  max |q - q of the first strategy| = %.2e\n",
@@ -174,6 +188,7 @@ void newton(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fixAllocatorThreshold();
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];

@@ -140,10 +140,19 @@ inline void mumpsVariant(std::string& base, KrylovSettings& k, bool& full) {
 }
 
 // "cholmod" / "cholmod-metis" (the reference above) or a strategy of systems/linear_solver.h,
-// fresh solver; a strategy's name may end in "-amd" or "-metis" to impose that ordering
+// fresh solver; any of them ending in "-nz" is given K without its explicit zeros (the
+// candidate contact elements that carry no stiffness; the copy is not timed); a strategy's name may end in "-amd" or "-metis" to impose that ordering
 // (solver.ordering; "umfpack-metis"); MUMPS's variants: mumpsVariant.
 inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls0,
                             const Eigen::VectorXd& b, int threads) {
+  if (name.size() > 3 && name.ends_with("-nz")) {  // the same on K without its explicit zeros
+    LinearSystem nz = ls0;
+    nz.K.prune([](Index, Index, double v) { return v != 0; });
+    ++nz.revision;
+    std::printf("    %s: K without explicit zeros, %ld of %ld entries\n", name.c_str(),
+                long(nz.K.nonZeros()), long(ls0.K.nonZeros()));
+    return strategyRun(name.substr(0, name.size() - 3), nz, b, threads);
+  }
   if (name == "cholmod" || name == "cholmod-metis")
     return cholmodReference(ls0, b, name != "cholmod");
   std::string base = name;
