@@ -29,6 +29,7 @@
 //       [--segments 8,15] [--rotations on|off] [--restart 60] [--max 600]
 //       [--reference umfpack,mumps,cholmod]
 // One thread (OpenBLAS at 1), b random (seeded).
+#include "core/allocator.h"
 #include "bench/tangent_cases.h"
 #include "systems/krylov.h"
 
@@ -327,6 +328,7 @@ void variant(const Options& o, const WorldState& w, const Tangent& t, const std:
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];

@@ -21,6 +21,7 @@
 //                       default free, bench/contact_scenes.h holdEndSpin)
 //                       [--increments N]  (of the last step: the squeeze, or the twist)
 //                       [--tolerance T]  (every step's forceTolerance, default 1e-8)
+#include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
@@ -105,6 +106,7 @@ void printRow(const char* load, size_t fibres, int elements, double mu, double p
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   std::vector<double> rings{1, 2}, mus{0.1, 0.3}, pMaxes{5e-4, 1e-4};
   std::vector<std::string> loads{"squeeze", "twist"};
   int elements = 10;

@@ -4,6 +4,7 @@
 // helical spring, where the two section rules differ.
 //
 //   build/bench_cantilever [--repeats N] [--csv FILE]
+#include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/elastica.h"
 #include "engine/world.h"
@@ -128,6 +129,7 @@ void helixTable() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   int repeats = 3;
   std::string csv = "cantilever.csv";
   for (int i = 1; i + 1 < argc; i += 2) {

@@ -13,6 +13,7 @@
 //                                 [--csv FILE] [--trace FILE] [--no-peers]
 // --trace FILE writes one 2-thread detection (full rebuild) and normal update per assembly as a
 // Chrome trace (open in Perfetto) and FILE.stages.csv, as `fibra run --trace` does.
+#include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/contact_assemblies.h"
 #include "systems/contact_detection.h"
@@ -289,6 +290,7 @@ Options parse(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   const Options o = parse(argc, argv);
   std::printf("load average at start: %s\n", loadAverage().c_str());
   std::string header = "assembly,elements,threads,pairs,zones,contacts";

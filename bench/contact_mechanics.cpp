@@ -6,6 +6,7 @@
 //
 //   build/bench_contact_mechanics [--part all|solvers|pmax|loops|bundle] [--threads N]
 //                                 [--rings 1..3] [--line-search on|off]
+#include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "io/scene_loader.h"
@@ -170,6 +171,7 @@ void bundles(const WorldDef& def) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   std::string part = "all";
   WorldDef def;
   def.threads = 2;

@@ -9,6 +9,7 @@
 // run's Newton iterations (all attempts). Factorisation and solve come from the step reports.
 // Systems that run side by side on two threads overlap, so with 2 threads the rows may add up
 // to more than the wall time per iteration. Medians over the repeats.
+#include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
 #include "io/scene_loader.h"
@@ -98,6 +99,7 @@ Sample runMedian(const SceneDef& scene, int threads, int repeats) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   int repeats = 5;
   std::string csvPath;
   for (int i = 1; i + 1 < argc; i += 2) {

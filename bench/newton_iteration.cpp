@@ -4,6 +4,7 @@
 // triplets every iteration.
 //
 //   build/bench_newton_iteration [--repeats N] [--csv FILE]
+#include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "engine/world_state.h"
 #include "systems/beam_element.h"
@@ -92,6 +93,7 @@ Row measure(int fibres, int threads, int repeats) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   int repeats = 7;
   std::string csv = "newton_iteration.csv";
   for (int i = 1; i + 1 < argc; i += 2) {

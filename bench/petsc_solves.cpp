@@ -35,6 +35,7 @@
 // (gmres-mumps) and kept as the preconditioner of GMRES on the N that follow (what a re-used factor costs).
 // Exit status 1 when a direct solve (mumps, mumps-ldlt, petsc-lu, umfpack, direct) leaves a
 // residual above 1e-6: the correctness check of the copy to PETSc.
+#include "core/allocator.h"
 #include "bench/tangent_cases.h"
 
 #include <malloc.h>
@@ -301,6 +302,7 @@ void reuse(const Options& o, const std::vector<LinearSystem>& tangents, const Ei
 }  // namespace
 
 int main(int argc, char** argv) {
+  fibra::fixAllocatorThreshold();  // core/allocator.h
   Options o;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
