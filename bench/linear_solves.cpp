@@ -146,7 +146,7 @@ void newton(const Options& o) {
       }
       int iterations = 0, krylovIterations = 0, fallbacks = 0;
       double wall = 0, assemble = 0, factorise = 0, solve = 0;
-      double schwarz[8] = {};  // LinearSolveStats::schwarz*, summed over the increments
+      SchwarzTimes schwarz;  // LinearSolveStats::schwarz, summed over the increments
       for (int inc = 1; inc <= o.newton; ++inc) {
         StepReport rep;
         const double t = bench::seconds([&] { rep = advance(w); });
@@ -161,10 +161,7 @@ void newton(const Options& o) {
                     st.flopsPerEntry, st.schwarzChoices);
         iterations += rep.totalIterations;
         krylovIterations += st.krylovIterations, fallbacks += st.fallbacks;
-        const double parts[8] = {st.schwarzBlocks, st.schwarzCoarse, st.schwarzCoarseSolve,
-                                 st.schwarzCoarseProduct, st.schwarzBlockSolve, st.schwarzProduct,
-                                 st.schwarzCoarseMatrix, st.schwarzCoarseAnalyse};
-        for (int k = 0; k < 8; ++k) schwarz[k] += parts[k];
+        schwarz += st.schwarz;
         wall += t, assemble += rep.timings.assemble, factorise += rep.timings.factorise, solve += rep.timings.solve;
         if (rep.status != StepStatus::Converged) break;
       }
@@ -172,12 +169,13 @@ void newton(const Options& o) {
                   "solve %.3f), krylov it %d, fallbacks %d, peak %.2f GiB\n", threads, name.c_str(), iterations,
                   wall, wall / iterations, assemble / iterations, factorise / iterations, solve / iterations,
                   krylovIterations, fallbacks, peakGiB());
-      if (schwarz[0] + schwarz[1] > 0)
+      if (schwarz.local + schwarz.coarse > 0)
         std::printf("  thr %d %-8s Schwarz per iteration: build blocks %.3f coarse %.3f (Phi and A_c %.3f, analysis %.3f); in GMRES coarse "
                     "solves %.3f, K y_c %.3f, block solves %.3f, K v %.3f s\n", threads, name.c_str(),
-                    schwarz[0] / iterations, schwarz[1] / iterations, schwarz[6] / iterations,
-                    schwarz[7] / iterations, schwarz[2] / iterations,
-                    schwarz[3] / iterations, schwarz[4] / iterations, schwarz[5] / iterations);
+                    schwarz.local / iterations, schwarz.coarse / iterations,
+                    schwarz.coarseMatrix / iterations, schwarz.coarseAnalyse / iterations,
+                    schwarz.coarseSolve / iterations, schwarz.product / iterations,
+                    schwarz.blockSolve / iterations, schwarz.operatorProduct / iterations);
       if (firstQ.size() == 0) firstQ = w.fibres.q;
       else if (firstQ.size() == w.fibres.q.size())
         std::printf("  max |q - q of the first strategy| = %.2e\n",

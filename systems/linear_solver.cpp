@@ -416,9 +416,7 @@ bool LinearSolver::Impl::schwarzFactorise(const LinearSystem& ls, std::string& m
   const bool built = schwarz.build(ls, *fibres, krylov.coarseSegments, why);
   stats.factorise += seconds(t0);
   ++stats.factorisations;
-  stats.schwarzBlocks += schwarz.times().local, stats.schwarzCoarse += schwarz.times().coarse;
-  stats.schwarzCoarseMatrix += schwarz.times().coarseMatrix;
-  stats.schwarzCoarseAnalyse += schwarz.times().coarseAnalyse;
+  stats.schwarz += schwarz.takeTimes();
   if (built) {
     active = Active::Schwarz;
     return true;
@@ -438,17 +436,12 @@ void LinearSolver::Impl::schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd&
   g.maxIterations = krylov.maxIterations;
   x.setZero(b.size());
   GmresResult r;
-  const SchwarzTimes before = schwarz.times();
   {
     Span span(trace, "krylov", "solver");
     r = gmres(A, M, b, x, g, workspace);
     span.items(r.iterations);
   }
-  const SchwarzTimes& after = schwarz.times();
-  stats.schwarzCoarseSolve += after.coarseSolve - before.coarseSolve;
-  stats.schwarzCoarseProduct += after.product - before.product;
-  stats.schwarzBlockSolve += after.blockSolve - before.blockSolve;
-  stats.schwarzProduct += after.operatorProduct - before.operatorProduct;
+  stats.schwarz += schwarz.takeTimes();
   stats.krylovIterations += r.iterations;
   stats.maxKrylovIterations = std::max(stats.maxKrylovIterations, r.iterations);
   stats.lastKrylovIterations += r.iterations;

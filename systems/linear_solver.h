@@ -66,6 +66,7 @@
 #include "components/fibres.h"
 #include "components/linear_system.h"
 #include "components/solver_settings.h"
+#include "systems/schwarz_preconditioner.h"
 #include "core/trace.h"
 
 #include <memory>
@@ -94,13 +95,7 @@ struct LinearSolveStats {
   double flopsPerEntry = 0;    // the last analysis's estimated factorisation flops (RINFOG(1))
                                // per non-zero of K (dimensionless)
   int schwarzChoices = 0;      // Auto: calls to factorise that took Schwarz by the fill rule
-  // Schwarz, s accumulated: the builds' fibre blocks and coarse level (inside factorise), and
-  // inside GMRES (solve) the preconditioner's coarse solves, its products K y_c, its fibre-block
-  // solves, and the operator's products K v
-  double schwarzBlocks = 0, schwarzCoarse = 0;
-  double schwarzCoarseMatrix = 0, schwarzCoarseAnalyse = 0;  // of schwarzCoarse: Phi, A_c; analysis
-  double schwarzCoarseSolve = 0, schwarzCoarseProduct = 0, schwarzBlockSolve = 0,
-         schwarzProduct = 0;
+  SchwarzTimes schwarz;        // Schwarz: its builds' and GMRES's parts, accumulated (s)
 };
 
 

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <utility>
 
 // LAPACK's banded LU (OpenBLAS ships LAPACK): factor and solve, Fortran calling convention.
 extern "C" {
@@ -47,6 +48,9 @@ void joinColumns(const std::vector<SparseMatrix>& parts, Index rows, SparseMatri
     }
   out.outerIndexPtr()[cols] = int(at);
 }
+
+// The prune predicate: keep the entries that are not exactly 0.
+bool nonZero(Index, Index, double v) { return v != 0; }
 
 // out = A without the entries that are exactly 0 (one pass, the order of the rest kept).
 void withoutZeros(const SparseMatrix& A, SparseMatrix& out) {
@@ -159,7 +163,7 @@ void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) 
   }
   Phi.resize(ls->freeCount, fibres.fibres() * columnsPerFibre);
   Phi.setFromTriplets(t.begin(), t.end());
-  Phi.prune([](Index, Index, double v) { return v != 0; });
+  Phi.prune(nonZero);
 }
 
 // A_c = Phi^T K Phi, one fibre's coarse columns at a time (tbb over the fibres: Phi's columns
@@ -177,7 +181,7 @@ void SchwarzPreconditioner::Impl::coarseMatrix() {
   });
   joinColumns(kphi, A.rows(), KPhi);
   joinColumns(parts, nc, Ac);
-  Ac.prune([](Index, Index, double v) { return v != 0; });  // Phi's explicit zeros give zeros
+  Ac.prune(nonZero);  // Phi's explicit zeros give zeros
   for (Index j = 0; j < nc; ++j)
     if (Phi.outerIndexPtr()[j + 1] == Phi.outerIndexPtr()[j]) Ac.coeffRef(j, j) = 1;
   Ac.makeCompressed();
@@ -224,22 +228,21 @@ bool SchwarzPreconditioner::build(const LinearSystem& ls, const FibreStore& fibr
                                   std::string& message) {
   Impl& m = *impl_;
   m.ls = &ls;
-  m.times = {};
   if (ls.symmetric) {
     m.Kn = ls.K.selfadjointView<Eigen::Upper>();
-    m.Kn.prune([](Index, Index, double v) { return v != 0; });
+    m.Kn.prune(nonZero);
   } else {
     withoutZeros(ls.K, m.Kn);
   }
   auto t0 = std::chrono::steady_clock::now();
   const bool blocks = m.factoriseBlocks(fibres, message);
-  m.times.local = since(t0);
+  m.times.local += since(t0);
   if (!blocks) return false;
   t0 = std::chrono::steady_clock::now();
   m.basis(fibres, std::max(1, segments));
-  m.times.coarseMatrix = since(t0);
+  m.times.coarseMatrix += since(t0);
   const bool coarse = m.factoriseCoarse(message);
-  m.times.coarse = since(t0);
+  m.times.coarse += since(t0);
   return coarse;
 }
 
@@ -265,6 +268,6 @@ void SchwarzPreconditioner::product(const Eigen::VectorXd& v, Eigen::VectorXd& y
   impl_->times.operatorProduct += since(t0);
 }
 
-const SchwarzTimes& SchwarzPreconditioner::times() const { return impl_->times; }
+SchwarzTimes SchwarzPreconditioner::takeTimes() { return std::exchange(impl_->times, {}); }
 
 }  // namespace fibra

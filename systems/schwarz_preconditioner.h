@@ -43,14 +43,22 @@
 
 namespace fibra {
 
+// Seconds spent by the preconditioner, accumulated until taken (takeTimes).
 struct SchwarzTimes {
-  double local = 0, coarse = 0;  // s spent building the fibre blocks and the coarse level
+  double local = 0, coarse = 0;  // builds: the fibre blocks, the coarse level
   double coarseMatrix = 0, coarseAnalyse = 0;  // of `coarse`: Phi and A_c; A_c's pattern analysis
-  // since the last build, over all apply() calls: their count and the s spent in the coarse
-  // solve (Phi^T v, A_c^-1, Phi z), the product K y_c, and the fibre blocks' solves
+  // apply() calls: their count and the s spent in the coarse solve (Phi^T v, A_c^-1, Phi z),
+  // the product K y_c and the fibre blocks' solves; product(): the operator's K v
   int applications = 0;
   double coarseSolve = 0, product = 0, blockSolve = 0;
-  double operatorProduct = 0;  // s in product(), K v, since the last build
+  double operatorProduct = 0;
+  SchwarzTimes& operator+=(const SchwarzTimes& o) {
+    local += o.local, coarse += o.coarse, coarseMatrix += o.coarseMatrix;
+    coarseAnalyse += o.coarseAnalyse, applications += o.applications;
+    coarseSolve += o.coarseSolve, product += o.product, blockSolve += o.blockSolve;
+    operatorProduct += o.operatorProduct;
+    return *this;
+  }
 };
 
 class SchwarzPreconditioner {
@@ -67,7 +75,8 @@ class SchwarzPreconditioner {
   void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
   // y = K v with the K of the last build (full or upper-triangle storage).
   void product(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
-  const SchwarzTimes& times() const;  // of the last build, and the applications since
+  // The times accumulated since the last call (by build, apply and product), which restart at 0.
+  SchwarzTimes takeTimes();
 
  private:
   struct Impl;

@@ -519,7 +519,7 @@ TEST_CASE("the Schwarz preconditioner ignores K's explicit zeros and times its a
     p.apply(v, y[k]);
     p.apply(v, y[k]);
     p.product(v, Kv[k]);
-    const SchwarzTimes& times = p.times();
+    const SchwarzTimes times = p.takeTimes();
     CHECK(times.applications == 2);
     CHECK(times.coarseSolve > 0);
     CHECK(times.blockSolve > 0);
