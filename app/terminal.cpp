@@ -231,6 +231,10 @@ std::string solverLine(const SceneDef& s) {
                            : v.ordering == Ordering::Amd ? "amd"
                                                          : "metis");
   if (v.krylov.blrTolerance > 0) out += format(", block low-rank %g", v.krylov.blrTolerance);
+  if (v.strategy != LinearStrategy::Schwarz)
+    out += v.krylov.patternSlack > 0
+               ? format(", on K's non-zeros (pattern slack %g)", v.krylov.patternSlack)
+               : std::string(", on K's stored pattern");
   const bool schwarz = v.strategy == LinearStrategy::Schwarz || v.strategy == LinearStrategy::Auto;
   if (schwarz)
     out += format(", schwarz's coarse level of %d segments per fibre", v.krylov.coarseSegments);

@@ -11,9 +11,11 @@
 //       e.g. mumps-blr1e-6, the mumps strategy with a block low-rank factor of accuracy eps
 //       inside GMRES (mumps-blr alone: 1e-6); mumps-full, mumps given a symmetric K in full,
 //       LU instead of LDL^T; any name ending in -nz, e.g. cholmod-nz: that one on K without
-//       its explicit zeros, analysis included)
+//       its explicit zeros, analysis included; any ending in -stored: that one with
+//       solver.pattern_slack 0, on K's stored pattern with its zeros)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
-//       [--coarse-segments 8] (schwarz) [--forcing-max 0,1e-2] (inexact Newton, each value
+//       [--coarse-segments 8] (schwarz) [--pattern-slack 1.5] (solver.pattern_slack)
+//       [--forcing-max 0,1e-2] (inexact Newton, each value
 //       with each Newton strategy; 0: every solve to the Krylov tolerance)
 //       [--scene FILE [--checkpoint FILE]] (a scene file, from a stopped run's state, instead of
 //       a built-in case)
@@ -65,6 +67,7 @@ struct Options : TangentCase {
   int newton = 0;
   int refactorAbove = KrylovSettings{}.refactorAbove;
   int coarseSegments = KrylovSettings{}.coarseSegments;
+  double patternSlack = KrylovSettings{}.patternSlack;
   int maxIterations = 30;  // Newton iterations per attempt
   int cutbacks = 8;        // per increment
   std::vector<std::string> newtonStrategies{"krylov", "umfpack"};
@@ -123,6 +126,7 @@ void newton(const Options& o) {
       w.scene = sceneOf(o, 5);
       w.scene.solver.krylov.refactorAbove = o.refactorAbove;
       w.scene.solver.krylov.coarseSegments = o.coarseSegments;
+      w.scene.solver.krylov.patternSlack = o.patternSlack;
       w.scene.solver.krylov.forcingMax = forcing;
       std::printf("  %s, forcing term <= %g\n", name.c_str(), forcing);
       for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
@@ -153,12 +157,12 @@ void newton(const Options& o) {
         const LinearSolveStats& st = w.solver.stats();
         std::printf("  thr %d %-8s incr %d: %-9s %3d it (%d cut) %8.2f s  asm %.2f fac %.2f sol %.2f | "
                     "factorisations %d refactor %d reuses %d krylov it %d (max %d) fail %d fallbacks %d shift %.0e "
-                    "flops/nnz %.3g schwarz %d\n",
+                    "flops/nnz %.3g schwarz %d analyses %d patterns %d (%ld entries)\n",
                     threads, name.c_str(), inc, rep.status == StepStatus::Converged ? "converged" : "FAILED",
                     rep.totalIterations, rep.cutbacks, t, rep.timings.assemble, rep.timings.factorise,
                     rep.timings.solve, st.factorisations, st.refactorisations, st.reuses,
                     st.krylovIterations, st.maxKrylovIterations, st.krylovFailures, st.fallbacks, st.shift,
-                    st.flopsPerEntry, st.schwarzChoices);
+                    st.flopsPerEntry, st.schwarzChoices, st.analyses, st.patterns, st.patternEntries);
         iterations += rep.totalIterations;
         krylovIterations += st.krylovIterations, fallbacks += st.fallbacks;
         schwarz += st.schwarz;
@@ -200,6 +204,7 @@ int main(int argc, char** argv) {
     else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
     else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
     else if (k == "--coarse-segments") o.coarseSegments = std::stoi(v);
+    else if (k == "--pattern-slack") o.patternSlack = std::stod(v);
     else if (k == "--forcing-max") { o.forcingMax.clear(); for (auto& f : split(v)) o.forcingMax.push_back(std::stod(f)); }
     else if (k == "--max-iterations") o.maxIterations = std::stoi(v);
   }

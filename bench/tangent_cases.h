@@ -141,17 +141,26 @@ inline void mumpsVariant(std::string& base, KrylovSettings& k, bool& full) {
 
 // "cholmod" / "cholmod-metis" (the reference above) or a strategy of systems/linear_solver.h,
 // fresh solver; any of them ending in "-nz" is given K without its explicit zeros (the
-// candidate contact elements that carry no stiffness; the copy is not timed); a strategy's name may end in "-amd" or "-metis" to impose that ordering
+// candidate contact elements that carry no stiffness; the copy is not timed), any ending in
+// "-stored" runs with solver.pattern_slack 0 (K's stored pattern, explicit zeros included, as
+// the strategies saw it before systems/nonzero_pattern.h); a strategy's name may end in "-amd"
+// or "-metis" to impose that ordering
 // (solver.ordering; "umfpack-metis"); MUMPS's variants: mumpsVariant.
 inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls0,
-                            const Eigen::VectorXd& b, int threads) {
+                            const Eigen::VectorXd& b, int threads,
+                            const KrylovSettings& settings = {}) {
   if (name.size() > 3 && name.ends_with("-nz")) {  // the same on K without its explicit zeros
     LinearSystem nz = ls0;
     nz.K.prune([](Index, Index, double v) { return v != 0; });
     ++nz.revision;
     std::printf("    %s: K without explicit zeros, %ld of %ld entries\n", name.c_str(),
                 long(nz.K.nonZeros()), long(ls0.K.nonZeros()));
-    return strategyRun(name.substr(0, name.size() - 3), nz, b, threads);
+    return strategyRun(name.substr(0, name.size() - 3), nz, b, threads, settings);
+  }
+  if (name.size() > 7 && name.ends_with("-stored")) {  // K's stored pattern, zeros included
+    KrylovSettings k;
+    k.patternSlack = 0;
+    return strategyRun(name.substr(0, name.size() - 7), ls0, b, threads, k);
   }
   if (name == "cholmod" || name == "cholmod-metis")
     return cholmodReference(ls0, b, name != "cholmod");
@@ -164,7 +173,7 @@ inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls0,
       ordering = o;
     }
   }
-  KrylovSettings krylov;
+  KrylovSettings krylov = settings;
   bool full = false;
   mumpsVariant(base, krylov, full);
   LinearStrategy s;
@@ -189,7 +198,7 @@ inline SolveRow strategyRun(const std::string& name, const LinearSystem& ls0,
   Eigen::VectorXd x;
   solver.solve(b, x);
   const LinearSolveStats& st = solver.stats();
-  r.analyse = st.analyse;
+  r.analyse = st.analyse + st.pattern;  // with the non-zero pattern's pass over K
   r.factorise = st.factorise;
   r.solve = st.solve;
   r.iterations = st.krylovIterations;

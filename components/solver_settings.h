@@ -23,6 +23,10 @@ struct KrylovSettings {
                              // relative accuracy, the preconditioner of GMRES (dimensionless)
   int coarseSegments = 8;    // Schwarz strategy: hat functions per fibre of its coarse level
                              // over this many pieces of the node index (>= 1)
+  double patternSlack = 1.5; // the exact factorisations and the Krylov strategies see K on a
+                             // pattern that holds its non-zeros and at most this many times as
+                             // many entries (systems/nonzero_pattern.h; dimensionless, >= 1);
+                             // 0: on K's stored pattern, explicit zeros included
   double forcingMax = 0;     // > 0: inexact Newton for the GMRES strategies (schwarz, krylov,
                              // krylov-lu, BLR mumps): a solve stops at the forcing term Newton
                              // passes (Eisenstat-Walker, systems/newton.h), at most this and at

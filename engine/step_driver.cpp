@@ -274,6 +274,7 @@ StepReport advance(WorldState& w) {
   StepReport rep;
   if (w.step >= int(w.scene.steps.size())) return rep;
   w.solver.resetStats();
+  w.solver.forgetPattern();  // a run resumed at this increment factorises on the same patterns
   const auto clock0 = std::chrono::steady_clock::now();
   const auto elapsed = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - clock0).count();

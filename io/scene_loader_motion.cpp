@@ -225,7 +225,7 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
 SolverDef readSolver(const Json& j, const std::string& path) {
   const Fields f(j, path, {"strategy", "ordering", "krylov_tolerance", "krylov_restart",
                            "krylov_max_iterations", "refactor_above", "blr_tolerance",
-                           "coarse_segments", "forcing_max"});
+                           "coarse_segments", "forcing_max", "pattern_slack"});
   SolverDef s;
   s.strategy = f.choice("strategy",
                         {{"auto", LinearStrategy::Auto}, {"direct", LinearStrategy::Direct},
@@ -243,6 +243,7 @@ SolverDef readSolver(const Json& j, const std::string& path) {
   s.krylov.blrTolerance = f.number("blr_tolerance", s.krylov.blrTolerance);
   s.krylov.coarseSegments = f.integer("coarse_segments", s.krylov.coarseSegments);
   s.krylov.forcingMax = f.number("forcing_max", s.krylov.forcingMax);
+  s.krylov.patternSlack = f.number("pattern_slack", s.krylov.patternSlack);
   return s;
 }
 

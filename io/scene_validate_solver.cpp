@@ -27,6 +27,9 @@ void validateSolver(const SolverDef& s) {
       s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
     fail("solver.coarse_segments", std::string("applies to the strategies schwarz and auto, not to '") +
                                        strategyName(s.strategy) + "'");
+  const double slack = s.krylov.patternSlack;
+  if (!(slack == 0 || (slack >= 1 && slack <= 100)))
+    fail("solver.pattern_slack", "must be 0 (off) or in [1, 100], got " + num(slack));
   if (!(s.krylov.forcingMax >= 0 && s.krylov.forcingMax < 1))
     fail("solver.forcing_max", "must be in [0, 1), got " + num(s.krylov.forcingMax));
   // Only a GMRES solve can stop early; the direct strategies would ignore it.

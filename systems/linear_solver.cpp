@@ -2,6 +2,7 @@
 
 #include "systems/krylov.h"
 #include "systems/mumps_solver.h"
+#include "systems/nonzero_pattern.h"
 #include "systems/schwarz_preconditioner.h"
 
 #include <Eigen/CholmodSupport>
@@ -104,9 +105,12 @@ struct LinearSolver::Impl {
   Eigen::SparseLU<SparseMatrix> sparseLu;
   Preconditioner pre;
   MumpsFactor mumps;
+  NonzeroPattern pattern;                // the non-zero pattern the factorisations see
   SchwarzPreconditioner schwarz;
   const FibreStore* fibres = nullptr;    // Schwarz: the fibres it follows
   double fill = 0;                       // MUMPS's estimated flops per non-zero of K, last analysis
+  int autoChoice = -1;                   // Auto from kMumpsFromEquations, this increment: -1 not
+                                         // decided yet, 0 MUMPS, 1 Schwarz (forgetPattern resets)
   GmresWorkspace workspace;
   KrylovSettings krylov;
   double forcing = 0;                    // the solve's forcing term (0: krylov.tolerance)
@@ -122,6 +126,7 @@ struct LinearSolver::Impl {
   LinearSolveStats stats;
 
   Impl() {
+    pattern.slack = krylov.patternSlack;
     llt.cholmod().print = 0;
     ldlt.cholmod().print = 0;
     pre.llt.cholmod().print = 0;
@@ -166,7 +171,7 @@ struct LinearSolver::Impl {
                         const LinearOperator& M);
   bool mumpsFactorise(const LinearSystem& ls, std::string& message);
   void mumpsSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
-  bool schwarzFactorise(const LinearSystem& ls, std::string& message);
+  bool schwarzFactorise(const LinearSystem& ls, const LinearSystem& exact, std::string& message);
   void schwarzSolve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   bool exactMumps(const LinearSystem& ls, std::string& message);
   bool mumpsAnalyse(const LinearSystem& ls, std::string& message);
@@ -355,7 +360,8 @@ bool LinearSolver::Impl::mumpsAnalyse(const LinearSystem& ls, std::string& messa
   const Index n = ls.freeCount;
   const MumpsAnalysis how{.symmetric = ls.symmetric, .ordering = ordering,
                           .metisAuto = ordering == Ordering::Auto && n >= kMumpsMetisFromEquations,
-                          .blrTolerance = krylov.blrTolerance, .revision = ls.revision};
+                          .blrTolerance = krylov.blrTolerance, .revision = ls.revision,
+                          .compact = &ls == &pattern.compact};
   if (mumps.needsAnalysis(how)) {
     const auto t0 = std::chrono::steady_clock::now();
     const bool ok = mumps.analyse(ls.K, how, message);
@@ -369,12 +375,15 @@ bool LinearSolver::Impl::mumpsAnalyse(const LinearSystem& ls, std::string& messa
 }
 
 // Auto's choice between MUMPS and Schwarz (from kMumpsFromEquations equations) by MUMPS's
-// analysis of this pattern (autoTakesSchwarz); false also when the analysis fails
-// (mumpsFactorise then reports it).
+// analysis of the increment's first pattern (autoTakesSchwarz), kept for the increment's other
+// patterns (the analysis would cost Schwarz ~1 s per pattern on bundle37); false also when the
+// analysis fails (mumpsFactorise then reports it).
 bool LinearSolver::Impl::schwarzPays(const LinearSystem& ls) {
+  if (autoChoice >= 0) return autoChoice == 1;
   std::string message;
   if (!fibres || !mumpsAnalyse(ls, message)) return false;
-  return autoTakesSchwarz(fill, true);
+  autoChoice = autoTakesSchwarz(fill, true) ? 1 : 0;
+  return autoChoice == 1;
 }
 
 // Exact factor: x = (LU)^-1 b. BLR factor: GMRES on the true K to krylov.tolerance, the factor
@@ -402,9 +411,11 @@ bool LinearSolver::Impl::exactMumps(const LinearSystem& ls, std::string& message
 }
 
 // Builds the two-level preconditioner from ls.K (every call: docs/RESULTS.md "Fibre-block
-// preconditioners"); one that cannot be built falls back to MUMPS's exact LU for this call.
-bool LinearSolver::Impl::schwarzFactorise(const LinearSystem& ls, std::string& message) {
-  system = &ls;
+// preconditioners"); one that cannot be built falls back to MUMPS's exact LU of `exact` (ls's K
+// on the non-zero pattern, or ls) for this call, as does a solve that misses its tolerance.
+bool LinearSolver::Impl::schwarzFactorise(const LinearSystem& ls, const LinearSystem& exact,
+                                          std::string& message) {
+  system = &exact;
   if (!fibres) {
     message = "Schwarz: no fibres given to the linear solver (setFibres)";
     return false;
@@ -422,7 +433,7 @@ bool LinearSolver::Impl::schwarzFactorise(const LinearSystem& ls, std::string& m
     return true;
   }
   ++stats.fallbacks;
-  return exactMumps(ls, message);
+  return exactMumps(exact, message);
 }
 
 // GMRES on the true K preconditioned by the Schwarz levels; a solve that misses the tolerance is
@@ -480,7 +491,13 @@ void LinearSolver::setLuSolver(LuSolver lu) {
 }
 
 void LinearSolver::setStrategy(LinearStrategy s) { impl_->strategy = s; }
-void LinearSolver::setKrylov(const KrylovSettings& k) { impl_->krylov = k; }
+void LinearSolver::setKrylov(const KrylovSettings& k) {
+  Impl& m = *impl_;
+  if (m.krylov.patternSlack != k.patternSlack)  // analyse again on the other pattern
+    m.lltRevision = m.ldltRevision = m.luRevision = m.umfRevision = m.pre.revision = -1;
+  m.krylov = k;
+  m.pattern.slack = k.patternSlack;
+}
 void LinearSolver::setOrdering(Ordering o) {
   Impl& m = *impl_;
   if (m.ordering != o)  // analyse again with the new ordering
@@ -502,24 +519,32 @@ bool LinearSolver::factorise(const LinearSystem& ls, std::string& message) {
   if (m.blasThreads > 0) openblas_set_num_threads(m.blasThreads);
   m.active = Active::None;
   const bool automatic = m.strategy == LinearStrategy::Auto;
-  switch (resolved(ls.freeCount)) {
-    case LinearStrategy::Umfpack: return m.umfpackLu(ls, message);
+  const LinearStrategy s = resolved(ls.freeCount);
+  // every strategy but Schwarz (which drops the zeros itself) factorises K on its non-zeros
+  const int patterns = m.pattern.patterns;
+  const auto t0 = std::chrono::steady_clock::now();
+  const LinearSystem& kc = s == LinearStrategy::Schwarz ? ls : updateNonzeroPattern(ls, m.pattern);
+  m.stats.pattern += seconds(t0);
+  m.stats.patterns += m.pattern.patterns - patterns;
+  m.stats.patternEntries = kc.K.nonZeros();
+  switch (s) {
+    case LinearStrategy::Umfpack: return m.umfpackLu(kc, message);
     case LinearStrategy::Mumps:
       // auto: a tangent MUMPS cannot factorise (reported singular, out of memory) falls back to
       // the direct path (as UMFPACK's singular reports on the 250-fibre yarn did,
       // docs/RESULTS.md). With a heavy fill auto takes Schwarz instead (schwarzPays).
-      if (automatic && m.schwarzPays(ls)) {
+      if (automatic && m.schwarzPays(kc)) {
         ++m.stats.schwarzChoices;
-        return m.schwarzFactorise(ls, message);
+        return m.schwarzFactorise(ls, kc, message);
       }
-      if (m.mumpsFactorise(ls, message) || !automatic) return m.active != Active::None;
+      if (m.mumpsFactorise(kc, message) || !automatic) return m.active != Active::None;
       ++m.stats.fallbacks;
       message.clear();
-      return m.direct(ls, message);
-    case LinearStrategy::Krylov: return m.krylovFactorise(ls, message, false);
-    case LinearStrategy::KrylovLu: return m.krylovFactorise(ls, message, true);
-    case LinearStrategy::Schwarz: return m.schwarzFactorise(ls, message);
-    default: return m.direct(ls, message);
+      return m.direct(kc, message);
+    case LinearStrategy::Krylov: return m.krylovFactorise(kc, message, false);
+    case LinearStrategy::KrylovLu: return m.krylovFactorise(kc, message, true);
+    case LinearStrategy::Schwarz: return m.schwarzFactorise(ls, ls, message);
+    default: return m.direct(kc, message);
   }
 }
 
@@ -556,5 +581,9 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, double fo
 
 const LinearSolveStats& LinearSolver::stats() const { return impl_->stats; }
 void LinearSolver::resetStats() { impl_->stats = LinearSolveStats{}; }
+void LinearSolver::forgetPattern() {
+  impl_->pattern.storedRevision = -1;
+  impl_->autoChoice = -1;
+}
 
 }  // namespace fibra

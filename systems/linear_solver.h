@@ -46,7 +46,12 @@
 //   kMumpsFromEquations, a pattern whose MUMPS analysis estimates kSchwarzFromFlopsPerEntry
 //   factorisation flops per non-zero of K or more (packed yarns and bundles; not fabrics,
 //   whose fill is light) goes to Schwarz instead (autoTakesSchwarz; counted in
-//   schwarzChoices), decided again at each new pattern.
+//   schwarzChoices), decided at the first pattern after forgetPattern (each increment) and
+//   kept until the next.
+// Pattern: every strategy but Schwarz factorises (and multiplies by) K on the non-zero pattern
+// of systems/nonzero_pattern.h, with KrylovSettings::patternSlack (0: K's stored pattern). Its
+// revision, not K's, decides the analyses ("the pattern changes" above); Schwarz drops K's
+// zeros itself.
 // Ordering (setOrdering, components/solver_settings.h): auto orders UMFPACK's factorisations by
 // METIS nested dissection from kMetisFromEquations equations and by AMD below, MUMPS's by METIS
 // from kMumpsMetisFromEquations and by AMD below, and leaves CHOLMOD its default;
@@ -96,6 +101,11 @@ struct LinearSolveStats {
                                // per non-zero of K (dimensionless)
   int schwarzChoices = 0;      // Auto: calls to factorise that took Schwarz by the fill rule
   SchwarzTimes schwarz;        // Schwarz: its builds' and GMRES's parts, accumulated (s)
+  // the non-zero pattern (systems/nonzero_pattern.h): the patterns it built, and the entries of
+  // the one the last call to factorise saw (K's stored ones when it is off or for Schwarz)
+  int patterns = 0;
+  long patternEntries = 0;
+  double pattern = 0;          // seconds in its passes over K, accumulated
 };
 
 
@@ -108,9 +118,12 @@ struct LinearSolveStats {
 // measured and Direct stays there).
 inline constexpr Index kMumpsFromEquations = 7000;
 // Auto's rule from kMumpsFromEquations: Schwarz instead of MUMPS when MUMPS's analysis estimates
-// at least this many factorisation flops per non-zero of K (dimensionless; measured,
-// docs/RESULTS.md "Fibre-block preconditioners").
-inline constexpr double kSchwarzFromFlopsPerEntry = 2000;
+// at least this many factorisation flops per non-zero of K on its non-zero pattern
+// (dimensionless; measured, docs/RESULTS.md "The exact strategies on the non-zero pattern":
+// 561 on bundle19 and 1 290-1 400 on bundle37, where Schwarz is 1.4x and 1.9x faster; light on
+// the woven sample, where MUMPS is; 1 250-1 380 mid-crush on the 250-fibre yarn, where exact
+// MUMPS beats exact GMRES but not inexact: the rule cannot tell these apart).
+inline constexpr double kSchwarzFromFlopsPerEntry = 500;
 // Auto's choice from kMumpsFromEquations: Schwarz (true) or MUMPS, for a K whose MUMPS analysis
 // estimates flopsPerEntry factorisation flops per non-zero, haveFibres when the solver knows
 // the fibres (setFibres).
@@ -157,6 +170,11 @@ class LinearSolver {
 
   const LinearSolveStats& stats() const;
   void resetStats();
+  // The non-zero pattern starts afresh from K's non-zeros at the next factorise, and Auto's
+  // choice between MUMPS and Schwarz is made again (the step driver calls it at each increment:
+  // neither then reaches back past an increment, and a run resumed from a checkpoint factorises
+  // on the same patterns with the same strategies as the run that wrote it, bitwise the same).
+  void forgetPattern();
   void setLuSolver(LuSolver lu);  // Direct, non-symmetric K; default EigenSparseLu
   void setStrategy(LinearStrategy s);  // default Auto
   void setKrylov(const KrylovSettings& k);

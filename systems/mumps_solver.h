@@ -44,6 +44,8 @@ struct MumpsAnalysis {
   bool metisAuto = false;     // Ordering::Auto resolved to METIS (else AMD)
   double blrTolerance = 0;    // 0: exact factor; > 0: BLR at that relative accuracy
   Index revision = -1;        // pattern revision of A
+  bool compact = false;       // A is the non-zero pattern's matrix (systems/nonzero_pattern.h),
+                              // `revision` that pattern's own
   bool operator==(const MumpsAnalysis&) const = default;
 };
 

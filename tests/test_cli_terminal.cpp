@@ -203,12 +203,14 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   CHECK(c.output.find("initial penalty 100 N/mm, ") != std::string::npos);
   CHECK(c.output.find(", loops A <= 3, B <= 3, crossings follow the closest points, frictionless "
                       "forces on material particles (the paper's)\n") != std::string::npos);
-  CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, GMRES to "
-                      "1e-08 (restart 40, <= 200 iterations)\n") != std::string::npos);
+  CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, on K's "
+                      "non-zeros (pattern slack 1.5), GMRES to 1e-08 (restart 40, <= 200 "
+                      "iterations)\n") != std::string::npos);
   CHECK(r.output.find("  linear solver: auto (direct below 7000 free equations, from there mumps, "
-                      "or schwarz where MUMPS's analysis estimates >= 2000 flops per non-zero), "
-                      "ordering auto, schwarz's coarse level of 8 segments per fibre, GMRES to 1e-08 "
-                      "(restart 40, <= 200 iterations)\n") != std::string::npos);
+                      "or schwarz where MUMPS's analysis estimates >= 500 flops per non-zero), "
+                      "ordering auto, on K's non-zeros (pattern slack 1.5), schwarz's coarse level "
+                      "of 8 segments per fibre, GMRES to 1e-08 (restart 40, <= 200 "
+                      "iterations)\n") != std::string::npos);
   CHECK(r.output.find("crossings follow") == std::string::npos);
   CHECK(r.output.find(", frictionless forces on facing particles\n") != std::string::npos);  // default
   CHECK(c.output.find("friction tangent symmetrised, element placement paper, normals updated by "

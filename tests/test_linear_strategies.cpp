@@ -383,6 +383,12 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(error(R"({"strategy": "mumps", "coarse_segments": 4})") ==
         "s.json: solver.coarse_segments: applies to the strategies schwarz and auto, not to 'mumps'");
   CHECK(loadSceneFromString(scene(R"({"coarse_segments": 15})"), "s.json").solver.krylov.coarseSegments == 15);
+  // the non-zero pattern's slack: 0 (off) or in [1, 100]
+  CHECK(loadSceneFromString(scene("{}"), "s.json").solver.krylov.patternSlack == 1.5);
+  CHECK(loadSceneFromString(scene(R"({"pattern_slack": 0})"), "s.json").solver.krylov.patternSlack == 0);
+  CHECK(loadSceneFromString(scene(R"({"pattern_slack": 2})"), "s.json").solver.krylov.patternSlack == 2);
+  CHECK(error(R"({"pattern_slack": 0.5})") ==
+        "s.json: solver.pattern_slack: must be 0 (off) or in [1, 100], got 0.5");
 }
 
 TEST_CASE("the Schwarz strategy: its preconditioner alone, bitwise across thread counts, and its fallback") {
