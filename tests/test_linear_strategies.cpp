@@ -252,10 +252,20 @@ TEST_CASE("the Krylov strategy re-uses its factor, refactorises when asked, and 
   CHECK(solver.stats().factorisations == 3);
   CHECK(solver.stats().reuses == 2);
   CHECK(solver.stats().krylovIterations - before > 1);
-  // A new pattern revision: a new analysis.
+  // A new stored pattern revision with the same non-zeros: the non-zero pattern carries over
+  // whole, no new analysis (systems/nonzero_pattern.h); a pattern started afresh (each
+  // increment) gets a new one; on the stored pattern (slack 0) each revision does.
   ++ls.revision;
   CHECK(solveWith(LinearStrategy::Krylov, ls, b, solver) <= 1e-10);
+  CHECK(solver.stats().analyses == 1);
+  solver.forgetPattern();
+  CHECK(solveWith(LinearStrategy::Krylov, ls, b, solver) <= 1e-10);
   CHECK(solver.stats().analyses == 2);
+  solver.setKrylov({.tolerance = 1e-10, .refactorAbove = 1, .patternSlack = 0});
+  CHECK(solveWith(LinearStrategy::Krylov, ls, b, solver) <= 1e-10);
+  ++ls.revision;
+  CHECK(solveWith(LinearStrategy::Krylov, ls, b, solver) <= 1e-10);
+  CHECK(solver.stats().analyses == 4);
 }
 
 TEST_CASE("the Krylov strategy shifts an indefinite symmetric part and solves the true K") {
