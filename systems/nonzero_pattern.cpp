@@ -1,5 +1,7 @@
 #include "systems/nonzero_pattern.h"
 
+#include <algorithm>
+
 namespace fibra {
 namespace {
 
@@ -73,6 +75,14 @@ Index carry(const SparseMatrix& C, const SparseMatrix& K, std::vector<std::uint8
   return entries;
 }
 
+// Whether A and B have the same CSC arrays (sizes, column starts, row indices in order).
+bool sameStructure(const SparseMatrix& A, const SparseMatrix& B) {
+  const Index nnz = A.nonZeros();
+  return A.rows() == B.rows() && A.cols() == B.cols() && nnz == B.nonZeros() &&
+         std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.cols() + 1, B.outerIndexPtr()) &&
+         std::equal(A.innerIndexPtr(), A.innerIndexPtr() + nnz, B.innerIndexPtr());
+}
+
 }  // namespace
 
 const LinearSystem& updateNonzeroPattern(const LinearSystem& ls, NonzeroPattern& p) {
@@ -82,7 +92,6 @@ const LinearSystem& updateNonzeroPattern(const LinearSystem& ls, NonzeroPattern&
   const SparseMatrix& K = ls.K;
   const bool fresh = p.storedRevision < 0 || c.K.cols() != K.cols() || c.K.rows() != K.rows();
   const bool moved = !fresh && (p.storedRevision != ls.revision || Index(p.in.size()) != K.nonZeros());
-  const Index before = c.K.nonZeros();
   if (fresh || moved) {
     p.in.assign(size_t(K.nonZeros()), 0);
     if (moved) p.entries = carry(c.K, K, p.in, p.mark);
@@ -93,9 +102,11 @@ const LinearSystem& updateNonzeroPattern(const LinearSystem& ls, NonzeroPattern&
   const double limit = p.slack * double(need);
   const bool keep = !fresh && escapes == 0 && double(p.entries) <= limit;
   if (keep && moved) {
-    // P's coordinates carried over are a subset of the previous P's: all of them iff as many
-    structure(K, p.in, p.entries, c.K);
-    if (p.entries != before) ++c.revision, ++p.patterns;
+    // the same revision only for the same arrays: a factorisation's analysis holds their order
+    SparseMatrix next;
+    structure(K, p.in, p.entries, next);
+    if (!sameStructure(next, c.K)) ++c.revision, ++p.patterns;
+    c.K.swap(next);
   } else if (!keep) {
     const bool unite = !fresh && double(p.entries + escapes) <= limit;
     p.entries = remask(K, p.in, unite);

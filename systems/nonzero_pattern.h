@@ -17,7 +17,7 @@
 //   and P's revision is bumped (the factorisations then analyse it again). A new revision of
 //   K's stored pattern (a contact pass's detection) carries P over by coordinates (the entries
 //   of P that the new stored pattern still holds) before the rule; P's revision stays when P
-//   keeps all its entries. P starts from nz(K) ∪ diag at the first call, when K's size changes
+//   keeps all its entries in the same order (the arrays a factorisation's analysis refers to). P starts from nz(K) ∪ diag at the first call, when K's size changes
 //   and after a restart (storedRevision = -1: LinearSolver::forgetPattern, each increment). The
 //   union and the carry let contacts that come and go within an increment keep their entries,
 //   so that P is analysed again only when new contact coupling appears or P has emptied. s = 0

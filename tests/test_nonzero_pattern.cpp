@@ -126,6 +126,17 @@ TEST_CASE("the non-zero pattern holds K's non-zeros and diagonal, and follows th
   CHECK(c.K.nonZeros() == 14);  // K(2, 2), no longer stored, is not in P either
   CHECK(Eigen::MatrixXd(c.K) == Eigen::MatrixXd(ls.K));
   CHECK(p.patterns == 6);
+  // the same entries stored in another order within column 0 (rows 1, 0): the same matrix, but
+  // other arrays for the factorisations, so a new revision
+  REQUIRE(ls.K.outerIndexPtr()[1] - ls.K.outerIndexPtr()[0] == 2);
+  std::swap(ls.K.innerIndexPtr()[0], ls.K.innerIndexPtr()[1]);
+  std::swap(ls.K.valuePtr()[0], ls.K.valuePtr()[1]);
+  ls.revision = 7;
+  updateNonzeroPattern(ls, p);
+  CHECK(c.revision == first + 6);
+  CHECK(c.K.nonZeros() == 14);
+  CHECK(c.K.innerIndexPtr()[0] == 1);
+  CHECK(Eigen::MatrixXd(c.K) == Eigen::MatrixXd(ls.K));
 }
 
 TEST_CASE("the union grows the pattern only within the slack, else it is rebuilt from K's non-zeros") {
