@@ -21,6 +21,7 @@
 //                       default free, bench/contact_scenes.h holdEndSpin)
 //                       [--increments N]  (of the last step: the squeeze, or the twist)
 //                       [--tolerance T]  (every step's forceTolerance, default 1e-8)
+//                       [--cycle-damping on|off]  (solver.cycle_damping, default on)
 #include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
@@ -111,6 +112,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> loads{"squeeze", "twist"};
   int elements = 10;
   bool lineSearch = false;
+  bool cycleDamping = SolverDef{}.cycleDamping;
   double damping = 0;
   int holdAfter = ContactDef{}.frictionHoldAfter;
   bool facing = ContactDef{}.facingParticles;
@@ -128,6 +130,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--elements")) elements = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--threads")) def.threads = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--line-search")) lineSearch = !std::strcmp(argv[i + 1], "on");
+    if (!std::strcmp(argv[i], "--cycle-damping")) cycleDamping = !std::strcmp(argv[i + 1], "on");
     if (!std::strcmp(argv[i], "--damping")) damping = std::atof(argv[i + 1]);
     if (!std::strcmp(argv[i], "--hold-after")) holdAfter = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--normal-update"))
@@ -140,9 +143,10 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--tolerance")) tolerance = std::atof(argv[i + 1]);
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  std::printf("threads %d, line search %s, damping %g, friction_hold_after %d, facing particles "
-              "%s, normal update %s, squeezed fibres' end spin %s\n\n",
-              def.threads, lineSearch ? "on" : "off", damping, holdAfter, facing ? "on" : "off",
+  std::printf("threads %d, line search %s, cycle damping %s, damping %g, friction_hold_after %d, "
+              "facing particles %s, normal update %s, squeezed fibres' end spin %s\n\n",
+              def.threads, lineSearch ? "on" : "off", cycleDamping ? "on" : "off", damping,
+              holdAfter, facing ? "on" : "off",
               normalUpdate == NormalUpdate::Loop     ? "loop"
               : normalUpdate == NormalUpdate::Newton ? "newton"
                                                      : "newton_frictionless",
@@ -162,6 +166,7 @@ int main(int argc, char** argv) {
           if (tolerance > 0)
             for (StepDef& st : s.steps) st.forceTolerance = tolerance;
           for (StepDef& st : s.steps) st.lineSearch = lineSearch, st.damping = damping;
+          s.solver.cycleDamping = cycleDamping;
           s.contact.frictionHoldAfter = holdAfter;
           s.contact.normalUpdate = normalUpdate;
           s.contact.facingParticles = facing;

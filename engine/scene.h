@@ -276,6 +276,8 @@ struct SolverDef {
   LinearStrategy strategy = LinearStrategy::Auto;  // auto: by size (docs/RESULTS.md)
   Ordering ordering = Ordering::Auto;               // auto: by size (docs/RESULTS.md)
   KrylovSettings krylov;
+  // Newton's cycle damping (systems/newton.h): halved steps once the residuals repeat.
+  bool cycleDamping = true;
 };
 
 // The prescribed motion of a boundary condition's held DOFs or of a tool (their motion fields).

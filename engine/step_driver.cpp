@@ -95,6 +95,7 @@ NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   settings.forceFloor = w.forceFloor;
   settings.lengthScale = w.lengthScale;
   settings.lineSearch = st.lineSearch;
+  settings.cycleDamping = w.scene.solver.cycleDamping;
   return settings;
 }
 

@@ -225,7 +225,8 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
 SolverDef readSolver(const Json& j, const std::string& path) {
   const Fields f(j, path, {"strategy", "ordering", "krylov_tolerance", "krylov_restart",
                            "krylov_max_iterations", "refactor_above", "blr_tolerance",
-                           "coarse_segments", "forcing_max", "pattern_slack"});
+                           "coarse_segments", "forcing_max", "pattern_slack",
+                           "cycle_damping"});
   SolverDef s;
   s.strategy = f.choice("strategy",
                         {{"auto", LinearStrategy::Auto}, {"direct", LinearStrategy::Direct},
@@ -244,6 +245,7 @@ SolverDef readSolver(const Json& j, const std::string& path) {
   s.krylov.coarseSegments = f.integer("coarse_segments", s.krylov.coarseSegments);
   s.krylov.forcingMax = f.number("forcing_max", s.krylov.forcingMax);
   s.krylov.patternSlack = f.number("pattern_slack", s.krylov.patternSlack);
+  s.cycleDamping = f.boolean("cycle_damping", s.cycleDamping);
   return s;
 }
 

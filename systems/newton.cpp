@@ -8,6 +8,14 @@
 namespace fibra {
 namespace {
 
+// Residuals that repeat to this relative tolerance are a cycle that stops the attempt; to
+// kCycleDamping, over at least kCycleDampingRecords of them and within the reference force,
+// one that arms the cycle damping (newton.h).
+constexpr double kCycleRepeats = 1e-6;
+constexpr double kCycleDamping = 1e-2;
+constexpr int kCycleDampingRecords = 4;
+
+
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -59,22 +67,26 @@ struct Context {
   }
 
   // Step length a and the relative residual at q0 + a dq: the full Newton step (within the
-  // contact step limit), halved while the residual is not finite. With the line search and a
-  // reference `accept` (kappa times the largest of the last residuals, see newton.h): halved
-  // while the residual exceeds it, at most maxHalvings times, keeping the trial with the
-  // smallest residual. Leaves ls assembled with the tangent at the chosen q.
-  std::pair<double, double> step(double accept) {
+  // contact step limit), halved while the residual is not finite. With a bound `accept` (the
+  // line search's, or the stall damping's: see newton.h; infinite when neither applies):
+  // halved while the residual exceeds it, at most maxHalvings times, keeping the trial with
+  // the smallest residual. Leaves ls assembled with the tangent at the chosen q.
+  struct Step {
+    double a, residual;
+    bool halved;  // for the bound
+  };
+  Step step(double accept) {
     const Eigen::VectorXd q0 = q;
     double a = cb.stepLimit ? std::clamp(cb.stepLimit(fullStep()), 1e-6, 1.0) : 1.0;
     double res = moveTo(q0, a, true);
     for (int k = 0; k < settings.maxHalvings && !std::isfinite(res); ++k) res = moveTo(q0, a *= 0.5, true);
-    if (!settings.lineSearch || !std::isfinite(res) || res <= accept) return {a, res};
+    if (!std::isfinite(res) || res <= accept) return {a, res, false};
     double best = res, bestA = a;
     for (int k = 0; k < settings.maxHalvings && !(res <= accept); ++k) {
       res = moveTo(q0, a *= 0.5, false);
       if (res < best) best = res, bestA = a;
     }
-    return {bestA, moveTo(q0, bestA, true)};
+    return {bestA, moveTo(q0, bestA, true), true};
   }
 };
 
@@ -85,19 +97,26 @@ double smallest(const std::vector<NewtonRecord>& h, int from, int to) {
   return m;
 }
 
-// The last 2p residuals repeat with period p (to 1e-6 relative), for some p <= maxPeriod;
-// returns p, or 0.
-int cyclePeriod(const std::vector<NewtonRecord>& h, int maxPeriod) {
+// The last max(2p, least) residuals (of the records from `from` on) repeat with period p (to
+// `tol` relative), for some p <= maxPeriod; returns p, or 0.
+int cyclePeriod(const std::vector<NewtonRecord>& h, int maxPeriod, double tol, int from = 0,
+                int least = 0) {
   const int n = int(h.size());
-  for (int p = 1; p <= maxPeriod && 2 * p <= n; ++p) {
+  for (int p = 1; p <= maxPeriod && std::max(2 * p, least) <= n - from; ++p) {
     bool repeats = true;
-    for (int i = 1; i <= p && repeats; ++i) {
+    for (int i = 1; i <= std::max(p, least - p) && repeats; ++i) {
       const double a = h[n - i].residual, b = h[n - i - p].residual;
-      repeats = std::abs(a - b) <= 1e-6 * std::max(std::abs(a), std::abs(b));
+      repeats = std::abs(a - b) <= tol * std::max(std::abs(a), std::abs(b));
     }
     if (repeats) return p;
   }
   return 0;
+}
+
+// Whether the residuals after `fresh` circle close to the solution (cycle damping).
+bool circling(const std::vector<NewtonRecord>& h, const NewtonSettings& s, int fresh) {
+  return smallest(h, 0, int(h.size())) < 1 &&
+         cyclePeriod(h, s.maxCyclePeriod, kCycleDamping, fresh, kCycleDampingRecords) > 0;
 }
 
 // No new smallest residual in the last w records.
@@ -115,12 +134,21 @@ double acceptance(const std::vector<NewtonRecord>& h, double current, const Newt
   return s.lineSearchFactor * m;
 }
 
+// The bound the next step must meet: the line search's (kappa times the last residuals), and
+// for a damped step a residual below the smallest so far by a relative 1e-4; INFINITY: none.
+double stepBound(const std::vector<NewtonRecord>& h, double current, const NewtonSettings& s,
+                 bool damped) {
+  double bound = s.lineSearch ? acceptance(h, current, s) : INFINITY;
+  if (damped) bound = std::min(bound, (1 - 1e-4) * smallest(h, 0, int(h.size())));
+  return bound;
+}
+
 // Why the attempt stagnates, or "" when it does not.
 std::string stagnation(const std::vector<NewtonRecord>& h, const NewtonSettings& s) {
   char m[200];
   const int n = int(h.size());
   const double last = n ? h.back().residual : 0;
-  if (const int p = cyclePeriod(h, s.maxCyclePeriod); p > 0) {
+  if (const int p = cyclePeriod(h, s.maxCyclePeriod, kCycleRepeats); p > 0) {
     std::snprintf(m, sizeof m, "stagnation: the residual repeats a cycle of %d iteration%s (last %.3g)",
                   p, p > 1 ? "s" : "", last);
     return m;
@@ -170,6 +198,8 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
   }
   const double first = res.residual;
   double previous = 0, eta = 1;  // the residual before the last step, the last forcing term
+  bool damped = false;  // cycle damping armed: the steps meet its bound until one is halved
+  int fresh = 0;        // the first record after the last halved step: cycles are sought there
   for (int it = 1; it <= settings.maxIterations; ++it) {
     if (cb.cancel && cb.cancel()) {
       res.outcome = NewtonOutcome::Cancelled;
@@ -184,7 +214,9 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     c.solve(-c.rf, c.dq, eta);
     previous = res.residual;
 
-    const auto [alpha, residual] = c.step(acceptance(res.history, res.residual, settings));
+    const auto [alpha, residual, halved] =
+        c.step(stepBound(res.history, res.residual, settings, damped));
+    if (damped && halved) damped = false, fresh = int(res.history.size()) + 1, ++res.dampedSteps;
     res.iterations = res.longestPass = it;
     res.residual = residual;
     res.smallest = std::min(res.smallest, residual);
@@ -204,6 +236,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
       }
     }
     if (res.message = stagnation(res.history, settings); !res.message.empty()) return res;
+    if (settings.cycleDamping && circling(res.history, settings, fresh)) damped = true;
     if (residual > settings.divergence * std::max(first, 1.0)) {
       res.message = "diverging: residual grew from " + number(first) + " to " + number(residual);
       return res;

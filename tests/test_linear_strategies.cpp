@@ -399,6 +399,11 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(loadSceneFromString(scene(R"({"pattern_slack": 2})"), "s.json").solver.krylov.patternSlack == 2);
   CHECK(error(R"({"pattern_slack": 0.5})") ==
         "s.json: solver.pattern_slack: must be 0 (off) or in [1, 100], got 0.5");
+  // Newton's cycle damping (systems/newton.h): on unless the scene says false
+  CHECK(loadSceneFromString(scene("{}"), "s.json").solver.cycleDamping);
+  CHECK(!loadSceneFromString(scene(R"({"cycle_damping": false})"), "s.json").solver.cycleDamping);
+  CHECK(error(R"({"cycle_damping": 1})") ==
+        "s.json: solver.cycle_damping: expected true or false, got the number 1");
 }
 
 TEST_CASE("the Schwarz strategy: its preconditioner alone, bitwise across thread counts, and its fallback") {

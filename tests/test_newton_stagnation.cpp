@@ -5,6 +5,8 @@
 //     the residual alternates between sqrt(a) and 2 sqrt(a): a cycle of period 2;
 //   r0(q) = sign(q) |q|^(1/3): the Newton step maps q to -2q, the residual grows by 2^(1/3)
 //     per iteration: no new smallest residual, far below the divergence bound for 20 iterations.
+//   r0(q) = atan(q) from just outside Newton's 2-cycle: full steps creep away, residuals
+//     repeating to 1e-2, until the cycle damping halves one step (systems/newton.h).
 #include "systems/newton.h"
 
 #include <doctest/doctest.h>
@@ -39,11 +41,12 @@ struct OneNode {
     ls.K.coeffRef(0, 0) = k0;
   }
 
-  NewtonResult solve(double q0, int maxIterations) {
+  NewtonResult solve(double q0, int maxIterations, bool cycleDamping = false) {
     q.setZero();
     q(0) = q0;
     NewtonSettings s;
     s.maxIterations = maxIterations;
+    s.cycleDamping = cycleDamping;
     s.forceFloor = 1;  // F_ref = 1 N: residuals read as forces
     NewtonCallbacks cb;
     cb.assemble = [this](bool t) { assemble(t); };
@@ -91,4 +94,48 @@ TEST_CASE("a Newton attempt that converges slowly at first is not called stagnan
   const NewtonResult r = n.solve(1.38, 30);
   CHECK(r.outcome == NewtonOutcome::Converged);
   CHECK(r.message.empty());
+}
+
+TEST_CASE("the cycle damping halves a step of a repeating residual, and Newton converges") {
+  // r0 = atan(q) from q0 = 1.392, just outside Newton's 2-cycle at 1.3917: full steps swap the
+  // sign of q and creep outwards (residuals 0.94798, 0.94835, 0.94934, 0.95194, ...) until
+  // they run away to |q| ~ 1e23.
+  OneNode n;
+  n.law = [](double x) -> std::pair<double, double> { return {std::atan(x), 1 / (1 + x * x)}; };
+  const NewtonResult plain = n.solve(1.392, 30);
+  CHECK(plain.outcome == NewtonOutcome::Failed);
+  CHECK(plain.dampedSteps == 0);
+  REQUIRE(plain.history.size() >= 3);
+  CHECK(plain.history[2].residual == doctest::Approx(0.94934).epsilon(1e-4));
+  CHECK(std::abs(n.q(0)) > 1e3);
+
+  // With it: the first four residuals repeat to 1e-2 (period 1, within the reference force),
+  // so the fifth step is halved (q = -0.0103, residual 1.026e-2) and full steps converge.
+  const NewtonResult damped = n.solve(1.392, 30, true);
+  CHECK(damped.outcome == NewtonOutcome::Converged);
+  CHECK(damped.iterations == 7);
+  CHECK(damped.dampedSteps == 1);
+  REQUIRE(damped.history.size() == 7);
+  for (int k = 0; k < 4; ++k) CHECK(damped.history[k].lineSearch == 1.0);
+  CHECK(damped.history[4].lineSearch == 0.5);
+  CHECK(damped.history[4].residual == doctest::Approx(1.02561e-2).epsilon(1e-3));
+  CHECK(damped.history[5].lineSearch == 1.0);
+  CHECK(std::abs(n.q(0)) < 1e-15);
+}
+
+TEST_CASE("the cycle damping leaves converging attempts and exact cycles alone") {
+  OneNode n;
+  n.law = [](double x) -> std::pair<double, double> { return {std::atan(x), 1 / (1 + x * x)}; };
+  const NewtonResult plain = n.solve(1.38, 30), damped = n.solve(1.38, 30, true);
+  CHECK(damped.outcome == NewtonOutcome::Converged);
+  CHECK(damped.iterations == plain.iterations);
+  CHECK(damped.dampedSteps == 0);
+  // the exact 2-cycle of sqrt: still stopped as stagnation, after the same 4 iterations
+  n.law = [](double x) -> std::pair<double, double> {
+    if (x > 0) return {std::sqrt(x), 0.5 / std::sqrt(x)};
+    return {-2 * std::sqrt(-x), 1 / std::sqrt(-x)};
+  };
+  const NewtonResult cycle = n.solve(0.25, 10000, true);
+  CHECK(cycle.iterations == 4);
+  CHECK(cycle.message.find("stagnation: the residual repeats a cycle of 2 iterations") == 0);
 }
