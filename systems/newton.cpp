@@ -15,7 +15,6 @@ constexpr double kCycleRepeats = 1e-6;
 constexpr double kCycleDamping = 1e-2;
 constexpr int kCycleDampingRecords = 4;
 
-
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -68,12 +67,12 @@ struct Context {
 
   // Step length a and the relative residual at q0 + a dq: the full Newton step (within the
   // contact step limit), halved while the residual is not finite. With a bound `accept` (the
-  // line search's, or the stall damping's: see newton.h; infinite when neither applies):
+  // line search's, or the cycle damping's: see newton.h; infinite when neither applies):
   // halved while the residual exceeds it, at most maxHalvings times, keeping the trial with
   // the smallest residual. Leaves ls assembled with the tangent at the chosen q.
   struct Step {
     double a, residual;
-    bool halved;  // for the bound
+    bool halved;  // the full step missed the bound
   };
   Step step(double accept) {
     const Eigen::VectorXd q0 = q;
