@@ -17,16 +17,17 @@
 // step multiplies it by 1e3-1e6); otherwise a is halved, at most maxHalvings times, and the
 // trial with the smallest residual is taken. Cutbacks of the increment remain the
 // globalisation.
-// Cycle damping (cycleDamping): when the last 2p residuals (at least 4) repeat with a period
-// p <= maxCyclePeriod to 1e-2 relative, the smallest residual of the pass below 1 (within the
-// reference force; further out, Newton's residuals are erratic and cutbacks serve) (circling: in the late crush of the 250-fibre yarn the
-// full steps swap two states of nearly the same residual, 8.58e-3 and 8.88e-3, for 20
-// iterations while a dozen contact elements switch), the steps must bring the residual below
-// the smallest so far by a relative 1e-4: the first that does not is halved, at most
-// maxHalvings times, until it does, else the trial with the smallest residual is taken; then
-// full steps again, and a cycle is sought only among the residuals after that step. A
-// converging pass, whose residuals keep making new lows, does not repeat and is never damped;
-// an exact repetition (1e-6) still stops it.
+// Cycle damping (cycleDamping): Newton circling, as in the late crush of the 250-fibre yarn,
+// where full steps swap two states of nearly the same residual (8.58e-3 and 8.88e-3 for 20
+// iterations) while a dozen contact elements switch. When the last 2p residuals (at least 4)
+// repeat with a period p <= maxCyclePeriod to 1e-2 relative, and the pass has come within the
+// reference force (smallest residual below 1; further out Newton's residuals are erratic and
+// cutbacks serve), the steps must bring the residual below the smallest so far by a relative
+// 1e-4: the first that does not is halved, at most maxHalvings times, until it does, else the
+// trial with the smallest residual is taken; then full steps again, and a repetition is sought
+// only among the residuals after that step. Residuals falling by more than 1% an iteration do
+// not repeat and are never damped (a steady fall slower than that counts as period 1); an
+// exact repetition (1e-6) still stops the attempt.
 // Norms: director forces (N mm) are divided by lengthScale, position increments too, so every
 // component reads as a force (N) or a dimensionless increment.
 // Converged when, after an iteration,
@@ -75,7 +76,8 @@ struct NewtonSettings {
   int lineSearchWindow = 5;           // M: residuals the acceptance bound looks back on
   double lineSearchFactor = 3;        // kappa: accepted growth over their largest
   int maxHalvings = 5;                // halvings of a step (non-finite residual, line search)
-  bool cycleDamping = false;          // damped steps once the residuals repeat (see above)
+  bool cycleDamping = false;          // damped steps once the residuals repeat (see above); off
+                                      // here, on from a scene (solver.cycle_damping)
   double divergence = 1e6;            // relative residual that aborts the attempt
   int stagnationWindow = 20;          // iterations without a new smallest residual: stuck
   int farStagnationWindow = 10;       // the same while every residual is above 1 (F_ref)
