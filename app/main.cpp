@@ -50,6 +50,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <new>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -512,6 +513,11 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "fibra: %s\nusage: %s\n(fibra --help for more)\n", e.what(),
                  usageLine(command).c_str());
     return kBadInput;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "fibra: error: out of memory: an allocation failed (the machine's memory, "
+                         "or a limit set on this process such as ulimit -v); a run stopped by it "
+                         "goes on from its last converged increment with fibra run --resume DIR\n");
+    return kFailed;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fibra: error: %s\n", e.what());
     return kFailed;

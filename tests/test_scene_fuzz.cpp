@@ -143,6 +143,27 @@ TEST_CASE("fuzz: a child past its wall-clock limit is stopped, and runs under th
   CHECK(readFile(scratch / "log") == "2097152\n");  // KiB
 }
 
+TEST_CASE("fibra out of memory says so and exits 1, not with a leaked std::bad_alloc") {
+  // The 250-fibre yarn needs more than 1 GiB of address space to set up (its tangent's
+  // pattern alone is 17 M entries): under that limit an allocation fails before the first
+  // increment. Found by the fuzz test: a mutant of it printed "fibra: error: std::bad_alloc".
+  TempDir scratch("fuzz_memory");
+  fs::create_directories(scratch.path());
+  ChildLimits limits;
+  limits.seconds = 60;
+  limits.addressSpaceBytes = std::uint64_t(1) << 30;
+  const std::string out = scratch / "out";
+  const ChildResult r = runLimited(
+      FIBRA_BINARY, {"run", sourcePath("samples/yarn_table2.json"), "--out", out, "--quiet",
+                     "--threads", "1"},
+      scratch / "log", limits);
+  const std::string log = readFile(scratch / "log");
+  CHECK_FALSE(r.terminated);
+  CHECK(r.status == 1);
+  CHECK(log.find("fibra: error: out of memory: an allocation failed") == 0);
+  CHECK_FALSE(mentionsCrash(log));
+}
+
 TEST_CASE("fuzz: scene mutants end with exit 0, 1 or 2 and a message, never a crash or hang") {
   const std::uint64_t seed = envNumber("FIBRA_FUZZ_SEED", kDefaultSeed);
   const int count = int(envNumber("FIBRA_FUZZ_MUTANTS", kDefaultMutants));
