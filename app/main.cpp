@@ -50,10 +50,10 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <new>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <new>
 #include <optional>
 #include <set>
 #include <string>

@@ -112,9 +112,11 @@ int cyclePeriod(const std::vector<NewtonRecord>& h, int maxPeriod, double tol, i
   return 0;
 }
 
-// Whether the residuals after `fresh` circle close to the solution (cycle damping).
-bool circling(const std::vector<NewtonRecord>& h, const NewtonSettings& s, int fresh) {
-  return smallest(h, 0, int(h.size())) < 1 &&
+// Whether the residuals after `fresh` circle close to the solution (cycle damping); least:
+// the smallest residual of the pass.
+bool circling(const std::vector<NewtonRecord>& h, double least, const NewtonSettings& s,
+              int fresh) {
+  return least < 1 &&
          cyclePeriod(h, s.maxCyclePeriod, kCycleDamping, fresh, kCycleDampingRecords) > 0;
 }
 
@@ -134,11 +136,12 @@ double acceptance(const std::vector<NewtonRecord>& h, double current, const Newt
 }
 
 // The bound the next step must meet: the line search's (kappa times the last residuals), and
-// for a damped step a residual below the smallest so far by a relative 1e-4; INFINITY: none.
-double stepBound(const std::vector<NewtonRecord>& h, double current, const NewtonSettings& s,
-                 bool damped) {
+// for a damped step a residual below the smallest so far (least) by a relative 1e-4;
+// INFINITY: none.
+double stepBound(const std::vector<NewtonRecord>& h, double current, double least,
+                 const NewtonSettings& s, bool damped) {
   double bound = s.lineSearch ? acceptance(h, current, s) : INFINITY;
-  if (damped) bound = std::min(bound, (1 - 1e-4) * smallest(h, 0, int(h.size())));
+  if (damped) bound = std::min(bound, (1 - 1e-4) * least);
   return bound;
 }
 
@@ -214,7 +217,7 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
     previous = res.residual;
 
     const auto [alpha, residual, halved] =
-        c.step(stepBound(res.history, res.residual, settings, damped));
+        c.step(stepBound(res.history, res.residual, res.smallest, settings, damped));
     if (damped && halved) damped = false, fresh = int(res.history.size()) + 1, ++res.dampedSteps;
     res.iterations = res.longestPass = it;
     res.residual = residual;
@@ -235,7 +238,8 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
       }
     }
     if (res.message = stagnation(res.history, settings); !res.message.empty()) return res;
-    if (settings.cycleDamping && circling(res.history, settings, fresh)) damped = true;
+    if (settings.cycleDamping && circling(res.history, res.smallest, settings, fresh))
+      damped = true;
     if (residual > settings.divergence * std::max(first, 1.0)) {
       res.message = "diverging: residual grew from " + number(first) + " to " + number(residual);
       return res;

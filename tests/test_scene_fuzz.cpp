@@ -144,9 +144,9 @@ TEST_CASE("fuzz: a child past its wall-clock limit is stopped, and runs under th
 }
 
 TEST_CASE("fibra out of memory says so and exits 1, not with a leaked std::bad_alloc") {
-  // The 250-fibre yarn needs more than 1 GiB of address space to set up (its tangent's
-  // pattern alone is 17 M entries): under that limit an allocation fails before the first
-  // increment. Found by the fuzz test: a mutant of it printed "fibra: error: std::bad_alloc".
+  // The 250-fibre yarn needs more than 1 GiB of address space to set up (measured: under 1 and
+  // 2 GiB an allocation fails before the first increment; a capped run of it without a limit
+  // peaks at 0.57 GB resident). Found by the fuzz test: a mutant of it printed "fibra: error: std::bad_alloc".
   TempDir scratch("fuzz_memory");
   fs::create_directories(scratch.path());
   ChildLimits limits;
