@@ -296,6 +296,7 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
                             r.step + 1, scene.steps.size(), r.increment, st.increments, r.time,
                             r.iterations, r.residual);
   if (r.cutbacks > 0) line += format("  %d cutbacks", r.cutbacks);
+  if (r.dampedSteps > 0) line += format("  %d damped steps", r.dampedSteps);
   const bool contact = scene.contact.enabled || !scene.tools.empty();
   const ContactReport& c = r.contact;
   if (contact)

@@ -43,14 +43,19 @@ struct ContactForceStore {
   // with the normal linearised (contact.normal_update "newton", fibre-fibre elements; else
   // empty): df/dv and the sections' weights; an element with I.count == 0 uses `stiffness`
   std::vector<NormalJacobian> normalJacobian;
-  // With contact.facing_particles (else empty), frictionless fibre-fibre elements with a fixed
-  // normal (systems/facing_particles.h): the particles the force acted on, the points of the two
+  // With contact.facing_particles (else empty), fibre-fibre elements with a fixed normal
+  // (systems/facing_particles.h): the particles the normal force acted on, the points of the two
   // outlines extremal along N at this evaluation (facing 1; 0: the element's material
   // particles), and the outlines' rolling stiffness as weights c = sqrt(R / rho) N_a v on the
-  // directors (sqrt(mm), per side), with K += R_N (c (x) N)(c (x) N)^T.
+  // directors (sqrt(mm), per side), with K += R_N (c (x) N)(c (x) N)^T. On a facing element
+  // `stiffness` is the normal force's -d(R_N N)/d(x^I - x^J) on the facing particles, and the
+  // friction force f - R_N N acts on the material particles with the two blocks below
+  // (systems/contact_law.h contactLawSplit; zero where frictionless).
   std::vector<std::uint8_t> facing;
   std::vector<ParticleWeights> facingI, facingJ;
   std::vector<ParticleWeights> rollingI, rollingJ;
+  std::vector<Eigen::Matrix3d> frictionStiffness;  // -df_T/dd on the material particles, N/mm
+  std::vector<Eigen::Matrix3d> coupling;           // -df_T/dd on the facing particles, N/mm
 
   Index size() const { return Index(gap.size()); }
 };

@@ -95,8 +95,9 @@ struct ContactParams {
   ElementPlacement placement = ElementPlacement::Weighted;  // line contacts' elements (above)
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in
                                 // loop B (systems/crossing_follow.h)
-  bool facingParticles = false; // frictionless elements act on the outlines' points extremal
-                                // along N, taken anew at every evaluation
+  bool facingParticles = false; // the normal force acts on the outlines' points extremal along
+                                // N, taken anew at every evaluation; friction on the material
+                                // particles
                                 // (systems/facing_particles.h; a scene's default is true,
                                 // ContactDef in engine/scene.h)
   double toolProximity = 0;     // tool elements are made within R + this, mm (NaN: per fibre,

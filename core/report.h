@@ -133,6 +133,8 @@ struct StepReport {
   int subIncrements = 0;    // converged attempts that make up this increment
   int predicted = 0;        // converged attempts that started from the secant predictor
   int predictorRetries = 0;  // predicted attempts that failed and were retried without it
+  int dampedSteps = 0;      // Newton steps the cycle damping halved, all attempts
+                            // (systems/newton.h)
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt
   double residual = 0;      // final relative residual
   double viscousForce = 0;  // |viscous continuation force on the free DOFs| / F_ref at the end

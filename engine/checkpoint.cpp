@@ -39,7 +39,7 @@ namespace fibra {
 namespace {
 
 constexpr char kMagic[] = "fibra-checkpoint\n";
-constexpr std::uint32_t kFormat = 2;
+constexpr std::uint32_t kFormat = 3;  // 3: the contact forces' friction blocks on facing particles
 
 template <class T>
 struct IsArray : std::false_type {};

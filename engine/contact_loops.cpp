@@ -60,6 +60,7 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
   openFrictionPass(w.trial.toolFrictionStatus);
   NewtonResult nr = solveNewton(w.fibres.q, w.system, w.solver, settings, callbacks, timings);
   nr.iterations += before.iterations;
+  nr.dampedSteps += before.dampedSteps;
   nr.longestPass = std::max(nr.longestPass, before.longestPass);
   return nr;
 }

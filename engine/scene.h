@@ -237,8 +237,9 @@ struct ContactDef {
                                       // plain update; <= 10)
   bool followCrossings = false;       // frictionless crossings' sections follow the closest
                                       // points in loop B (systems/crossing_follow.h)
-  bool facingParticles = true;        // frictionless elements act on the outlines' points
-                                      // extremal along N (systems/facing_particles.h)
+  bool facingParticles = true;        // the normal force acts on the outlines' points extremal
+                                      // along N, friction on the material particles
+                                      // (systems/facing_particles.h)
   std::vector<ContactPairDef> pairs;  // per pair class overrides of friction, p_max, bounds
 };
 

@@ -311,6 +311,7 @@ StepReport advance(WorldState& w) {
     w.predict = st.predictor && !retried && w.rateStep == w.step;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
     rep.totalIterations += nr.iterations;
+    rep.dampedSteps += nr.dampedSteps;
     rep.history = nr.history;
     if (nr.outcome == NewtonOutcome::Converged) {
       const double size = tTry - w.time;

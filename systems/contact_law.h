@@ -17,7 +17,14 @@
 //   df/dd = R_N' N N^T - (mu / g_max) (g_rev R_N' N^T + R_N dg_rev/dd),
 //   dg_rev/dd = P (stick) or (g_max / |t|) (P - u u^T), u = t / |t| (slip).
 // Only g_rev R_N' N^T (the normal force scaling the friction force) is non-symmetric; the
-// symmetrised tangent drops it. Pure functions; no state.
+// symmetrised tangent drops it.
+// Split particles (contactLawSplit): the gap measured by one pair of points, d_N (the facing
+// particles, systems/facing_particles.h), the slip by another, d_T (the material particles).
+// The normal force R_N N acts on the first pair, the friction force on the second, and the
+// stiffness comes in three blocks: -d(R_N N)/dd_N = -R_N' N N^T, and of the friction force
+// f_T = -mu R_N g_rev / g_max: -df_T/dd_T = (mu / g_max) R_N dg_rev/dd_T and
+// -df_T/dd_N = (mu / g_max) g_rev R_N' N^T (the non-symmetric one). With d_N = d_T their sum
+// is the single pair's stiffness. Pure functions; no state.
 #pragma once
 
 #include "components/contact_forces.h"
@@ -51,6 +58,9 @@ struct ContactLawResult {
   double trialRatio = 0;        // |trial| / g_max (0 without friction or normal force)
   Vec3 force = Vec3::Zero();    // f on particle I (J gets -f), N
   Eigen::Matrix3d stiffness = Eigen::Matrix3d::Zero();  // -df/dd, N/mm
+  // contactLawSplit only (else zero): the blocks of the friction force f_T = f - R_N N, N/mm
+  Eigen::Matrix3d frictionStiffness = Eigen::Matrix3d::Zero();  // -df_T/dd_T
+  Eigen::Matrix3d coupling = Eigen::Matrix3d::Zero();           // -df_T/dd_N
 };
 
 // Normal force R_N(g) and dR_N/dg of eq. 12.
@@ -66,22 +76,25 @@ inline void penaltyForce(double g, double k, double pReg, double& R, double& dR)
   }
 }
 
-// `hold`: kStatusNone (the return mapping decides), kStatusStick or kStatusSlip (that branch).
-inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
-                                   const ContactLawParams& p, bool symmetrised,
-                                   std::uint8_t hold = kStatusNone) {
+// The normal force on the gap g = d_N . N (eq. 12) and the friction force on the slip of d_T
+// (eqs. 14-16): `stiffness` -d(R_N N)/dd_N, `frictionStiffness` and `coupling` the friction
+// force's blocks (header). `hold`: kStatusNone (the return mapping decides), kStatusStick or
+// kStatusSlip (that branch).
+inline ContactLawResult contactLawSplit(const Vec3& dN, const Vec3& dT, const ContactLawState& s,
+                                        const ContactLawParams& p, bool symmetrised,
+                                        std::uint8_t hold = kStatusNone) {
   ContactLawResult out;
   const Vec3& N = s.normal;
   out.normal = N;
-  out.gap = d.dot(N);
+  out.gap = dN.dot(N);
   double dR;
   penaltyForce(out.gap, p.penalty, p.pReg, out.normalForce, dR);
   const double R = out.normalForce;
   out.force = R * N;
-  Eigen::Matrix3d dfdd = dR * N * N.transpose();
+  out.stiffness = -dR * N * N.transpose();
   if (p.mu > 0 && R > 0) {
     const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - N * N.transpose();
-    const Vec3 trial = s.gRev0 + P * (d - s.d0);
+    const Vec3 trial = s.gRev0 + P * (dT - s.d0);
     const double t = trial.norm();
     Eigen::Matrix3d dgRev = P;
     out.gRev = trial;
@@ -95,10 +108,20 @@ inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
     }
     const double c = p.mu / p.gMax;
     out.force -= c * R * out.gRev;
-    dfdd -= c * R * dgRev;
-    if (!symmetrised) dfdd -= c * out.gRev * dR * N.transpose();
+    out.frictionStiffness = c * R * dgRev;
+    if (!symmetrised) out.coupling = c * out.gRev * dR * N.transpose();
   }
-  out.stiffness = -dfdd;
+  return out;
+}
+
+// One pair of particles for both (eqs. 11-16): d = x^I - x^J, S = -df/dd.
+inline ContactLawResult contactLaw(const Vec3& d, const ContactLawState& s,
+                                   const ContactLawParams& p, bool symmetrised,
+                                   std::uint8_t hold = kStatusNone) {
+  ContactLawResult out = contactLawSplit(d, d, s, p, symmetrised, hold);
+  out.stiffness += out.frictionStiffness + out.coupling;
+  out.frictionStiffness.setZero();
+  out.coupling.setZero();
   return out;
 }
 
@@ -109,6 +132,8 @@ inline void resizeContactForces(ContactForceStore& f, Index n) {
   f.normalJacobian.clear();
   for (auto* side : {&f.facingI, &f.facingJ, &f.rollingI, &f.rollingJ}) side->clear();
   f.facing.clear();
+  f.frictionStiffness.clear();
+  f.coupling.clear();
 }
 
 // Element e's entries of a force store.

@@ -18,8 +18,8 @@ double stepLimit(const ContactParams& p, const ContactState& s, const Eigen::Vec
     if (dg < 0) a = std::min(a, std::max(gap + allowed, allowed) / -dg);
   };
   const ContactElementStore& el = s.elements;
-  // The gap's change along the particles the force acted on (an element on facing particles:
-  // theirs, systems/facing_particles.h, whose weights are dg/dq).
+  // The gap's change along the particles the normal force acted on (an element on facing
+  // particles: theirs, systems/facing_particles.h, whose weights are dg/dq).
   for (Index e = 0; e < el.size(); ++e)
     limit(s.forces.gap[e], s.zones.pMax[el.zone[e]],
           el.normal[e].dot(particlePosition(dq, forceParticle(el, s.forces, e, 0)) -

@@ -5,8 +5,8 @@
 // stepLimit           the largest step length a in (0, 1] along dq (all DOFs) such that no
 //                     element closes deeper than allowed = stepPenetration p_max in one Newton
 //                     step, and none already in contact closes by more than that:
-//                     dg = N . (dx^I - dx^J) (x^I, x^J: the particles the last force acted
-//                     on, facing ones where it had them: systems/facing_particles.h),
+//                     dg = N . (dx^I - dx^J) (x^I, x^J: the particles the last normal force
+//                     acted on, facing ones where it had them: systems/facing_particles.h),
 //                     a = min over closing elements (dg < 0) of
 //                     max(g + allowed, allowed) / -dg, g the gap at the last evaluation. (An
 //                     absolute bound g + a dg >= -allowed froze Newton when the penalty was too

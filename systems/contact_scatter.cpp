@@ -35,13 +35,22 @@ int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, const Cli
   return n;
 }
 
-// A frictionless element on its facing particles (systems/facing_particles.h): the force and
-// the penalty's stiffness on them, and each outline's rolling stiffness R_N (R / rho) w w^T.
-void scatterFacing(const ContactForceStore& f, Index e, Index clique, const CliqueSlots& slots,
-                   bool withTangent, LinearSystem& ls) {
+// An element on its facing particles (systems/facing_particles.h): the normal force R_N N and
+// its stiffness on them, each outline's rolling stiffness R_N (R / rho) w w^T, and the friction
+// force f - R_N N on the material particles with its blocks on the material particles
+// (frictionStiffness) and on the facing ones (coupling).
+void scatterFacing(const ParticleWeights material[2], const ContactForceStore& f, Index e, Index clique,
+                   const CliqueSlots& slots, bool withTangent, LinearSystem& ls) {
   const double sign[2] = {1, -1}, one = 1;
-  const ParticleWeights sides[2] = {f.facingI[e], f.facingJ[e]};
-  scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], clique, withTangent, ls, &slots);
+  const ParticleWeights facing[2] = {f.facingI[e], f.facingJ[e]};
+  const Vec3 normal = f.normalForce[e] * f.normal[e];
+  scatterContact(facing, sign, 2, normal, f.stiffness[e], clique, withTangent, ls, &slots);
+  const Vec3 friction = f.force[e] - normal;
+  if (friction != Vec3::Zero() || f.frictionStiffness[e] != Eigen::Matrix3d::Zero()) {
+    scatterContact(material, sign, 2, friction, f.frictionStiffness[e], clique, withTangent, ls,
+                   &slots);
+    if (withTangent) scatterTangent(material, facing, sign, 2, f.coupling[e], clique, slots, ls);
+  }
   if (!withTangent) return;
   const Eigen::Matrix3d S = f.normalForce[e] * f.normal[e] * f.normal[e].transpose();
   const ParticleWeights* rolling[2] = {&f.rollingI[e], &f.rollingJ[e]};
@@ -101,7 +110,7 @@ void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore
           scatterLinearisedContact(sides, f.normalJacobian[e], f.force[e], c.firstClique + q,
                                    slots, rangeFirst, input.withTangent, ls);
         } else if (!f.facing.empty() && f.facing[e]) {
-          scatterFacing(f, e, c.firstClique + q, slots, input.withTangent, ls);
+          scatterFacing(sides, f, e, c.firstClique + q, slots, input.withTangent, ls);
         } else {
           scatterContact(sides, sign, 2, f.force[e], f.stiffness[e], c.firstClique + q,
                          input.withTangent, ls, &slots);

@@ -9,8 +9,9 @@
 //   IterationInput; writes LinearSystem r, K, serially in element order (tool contacts are few);
 //   the clique of a tool element is its beam element's.
 // Both skip elements without normal force. A fibre element with a linearised normal goes
-// through scatterLinearisedContact; one on facing particles (ContactForceStore::facing) acts on
-// them, and adds each outline's rolling stiffness (systems/facing_particles.h).
+// through scatterLinearisedContact; one on facing particles (ContactForceStore::facing) has its
+// normal force act on them, with each outline's rolling stiffness, and its friction force on
+// its material particles (systems/facing_particles.h).
 //
 // One element (scatterContact below):
 // A contact element acts on the relative position d = sum_s sign_s x_s of its particles
@@ -45,30 +46,38 @@ inline CliqueSlots defaultSlots(const ParticleWeights* side, int sides) {
   return c;
 }
 
-inline void scatterContact(const ParticleWeights* side, const double* sign, int sides,
-                           const Vec3& f, const Eigen::Matrix3d& S, Index clique,
-                           bool withTangent, LinearSystem& ls, const CliqueSlots* slots = nullptr) {
-  const CliqueSlots at = slots ? *slots : defaultSlots(side, sides);
-  for (int s = 0; s < sides; ++s)
-    for (int a = 0; a < side[s].nodes; ++a)
-      for (int k = 0; k < 3; ++k)
-        ls.r.segment<3>(kNodeDofs * (side[s].firstNode + a) + 3 * k) -= sign[s] * side[s].c[a][k] * f;
-  if (!withTangent) return;
+// K += D_rows^T S D_cols: the tangent of a force that acts on the particles `rows` and
+// depends on the positions of the particles `cols` (both sides' weights on the same elements:
+// the same slots).
+inline void scatterTangent(const ParticleWeights* rows, const ParticleWeights* cols,
+                           const double* sign, int sides, const Eigen::Matrix3d& S, Index clique,
+                           const CliqueSlots& at, LinearSystem& ls) {
   const Index n = kNodeDofs * at.nodes;
   const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
   double* values = ls.K.valuePtr();
   for (int s = 0; s < sides; ++s)
     for (int t = 0; t < sides; ++t)
-      for (int a = 0, na = at.first[s], nb = at.first[t]; a < side[s].nodes; ++a)
-        for (int b = 0; b < side[t].nodes; ++b)
+      for (int a = 0, na = at.first[s], nb = at.first[t]; a < rows[s].nodes; ++a)
+        for (int b = 0; b < cols[t].nodes; ++b)
           for (int k = 0; k < 3; ++k)
             for (int h = 0; h < 3; ++h) {
-              const double w = sign[s] * sign[t] * side[s].c[a][k] * side[t].c[b][h];
+              const double w = sign[s] * sign[t] * rows[s].c[a][k] * cols[t].c[b][h];
               const Index i0 = kNodeDofs * (na + a) + 3 * k, j0 = kNodeDofs * (nb + b) + 3 * h;
               for (int i = 0; i < 3; ++i)
                 for (int j = 0; j < 3; ++j)
                   if (const Index p = pos[(i0 + i) * n + j0 + j]; p >= 0) values[p] += w * S(i, j);
             }
+}
+
+inline void scatterContact(const ParticleWeights* side, const double* sign, int sides,
+                           const Vec3& f, const Eigen::Matrix3d& S, Index clique,
+                           bool withTangent, LinearSystem& ls, const CliqueSlots* slots = nullptr) {
+  for (int s = 0; s < sides; ++s)
+    for (int a = 0; a < side[s].nodes; ++a)
+      for (int k = 0; k < 3; ++k)
+        ls.r.segment<3>(kNodeDofs * (side[s].firstNode + a) + 3 * k) -= sign[s] * side[s].c[a][k] * f;
+  if (withTangent)
+    scatterTangent(side, side, sign, sides, S, clique, slots ? *slots : defaultSlots(side, sides), ls);
 }
 
 // An element with a linearised normal (ContactForceStore::normalJacobian,

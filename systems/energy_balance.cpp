@@ -17,11 +17,13 @@ void contactForces(const ContactState& c, EnergyForces& out) {
   for (Index e = 0; e < el.size() && e < c.forces.size(); ++e) {
     const Vec3 normal = c.forces.normalForce[e] * c.forces.normal[e];
     const Vec3 friction = c.forces.force[e] - normal;
+    // the normal force on the particles it acted on (facing ones where it had them), friction
+    // on the material particles its slip is measured between
     const ParticleWeights &I = forceParticle(el, c.forces, e, 0), &J = forceParticle(el, c.forces, e, 1);
-    for (auto [side, sign] : {std::pair{&I, 1.0}, std::pair{&J, -1.0}}) {
-      addParticleForce(*side, normal, sign, out.normal);
-      addParticleForce(*side, friction, sign, out.friction);
-    }
+    addParticleForce(I, normal, 1, out.normal);
+    addParticleForce(J, normal, -1, out.normal);
+    addParticleForce(el.sideI[e], friction, 1, out.friction);
+    addParticleForce(el.sideJ[e], friction, -1, out.friction);
   }
   const ToolContactStore& tl = c.toolElements;
   for (Index i = 0; i < tl.size() && i < c.toolForces.size(); ++i) {

@@ -6,7 +6,8 @@
 //                writes EnergyForces: generalised forces per DOF (a particle force F on
 //                x = sum_a c_a0 x0_a + c_a1 g1_a + c_a2 g2_a gives c_af F on node a's field f);
 //                an element's normal part is R_N N with the N its force was computed with
-//                (ContactForceStore::normal), the rest of f is friction's.
+//                (ContactForceStore::normal), on the particles it acted on (facing ones where
+//                it had them); the rest of f is friction's, on the material particles.
 // accumulateEnergy reads the forces of the last and the new converged state, their states q and
 //                the stabilisation (spring and viscous forces of the new state, anchored at the
 //                increment's start); writes EnergyBalance:

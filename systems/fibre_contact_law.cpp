@@ -12,11 +12,11 @@
 namespace fibra {
 namespace {
 
-// With contact.facing_particles (the facing columns then sized): frictionless, a fixed normal,
-// no end face.
-bool facingElement(const ContactParams& p, const ContactElementStore& el, Index e,
-                   const ContactLawParams& law) {
-  return p.facingParticles && !(law.mu > 0) && !(el.fallback[e] & (kEndFaceI | kEndFaceJ));
+// With contact.facing_particles (the facing columns then sized): a fixed normal (the caller has
+// taken the linearised ones), no end face. Frictional or not: the normal force on the facing
+// particles, friction's on the material ones (systems/facing_particles.h).
+bool facingElement(const ContactParams& p, const ContactElementStore& el, Index e) {
+  return p.facingParticles && !(el.fallback[e] & (kEndFaceI | kEndFaceJ));
 }
 
 }  // namespace
@@ -27,10 +27,12 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
   resizeContactForces(out, el.size());
   sizeFrictionStatus(status, el.size());
   if (normalsInNewton(p)) out.normalJacobian.resize(el.size());
-  if (p.facingParticles) {  // only then: five columns per element a scene without it skips
+  if (p.facingParticles) {  // only then: seven columns per element a scene without it skips
     out.facing.assign(el.size(), 0);
     for (auto* side : {&out.facingI, &out.facingJ, &out.rollingI, &out.rollingJ})
       side->resize(el.size());
+    out.frictionStiffness.resize(el.size());
+    out.coupling.resize(el.size());
   }
   tbb::parallel_for(Index(0), el.size(), [&](Index e) {
     const Index z = el.zone[e];
@@ -43,20 +45,22 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
       out.normalJacobian[e] = c.jacobian;
       return;
     }
+    const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
     FacingSide I, J;
-    if (facingElement(p, el, e, law) &&
+    if (facingElement(p, el, e) &&
         facingSide(fs.q, el.sideI[e], fs.radius[el.fibreI[e]], -el.normal[e], I) &&
         facingSide(fs.q, el.sideJ[e], fs.radius[el.fibreJ[e]], el.normal[e], J)) {
-      const ContactLawResult r = contactLaw(I.position - J.position,
-                                            {el.normal[e], el.d0[e], el.gRev0[e]}, law,
-                                            p.symmetrised, status.held[e]);
+      const ContactLawResult r = contactLawSplit(I.position - J.position, d,
+                                                 {el.normal[e], el.d0[e], el.gRev0[e]}, law,
+                                                 p.symmetrised, status.held[e]);
       storeContactLaw(r, e, out);
       out.facing[e] = 1;
       out.facingI[e] = I.particle, out.facingJ[e] = J.particle;
       out.rollingI[e] = I.rolling, out.rollingJ[e] = J.rolling;
+      out.frictionStiffness[e] = r.frictionStiffness, out.coupling[e] = r.coupling;
+      if (law.mu > 0) trackFrictionStatus(status, e, r, input.withTangent, p.frictionFlips);
       return;
     }
-    const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
     const ContactLawResult r =
         contactLaw(d, {el.normal[e], el.d0[e], el.gRev0[e]}, law, p.symmetrised, status.held[e]);
     storeContactLaw(r, e, out);

@@ -6,15 +6,16 @@
 //        weights, element weight w_e, normal, friction reference).
 //        IterationInput (with or without the tangent).
 // Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element; facing
-//        particles and rolling weights of frictionless elements),
+//        particles, rolling weights and friction blocks of elements on facing particles),
 //        FrictionStatusStore (the branch each element took; held statuses are read:
 //        systems/friction_status.h).
 // Per element: d = x^I - x^J from the particle weights, the law of systems/contact_law.h with the
 // penalty k_zone w_e (w_e: the element's share of the line, mean 1 over the zone,
 // systems/contact_elements.h), p_reg = (p_reg / p_max) p_max,zone and mu = mu_zone. With
-// ContactParams::facingParticles (contact `facing_particles`) a frictionless element with a
-// fixed normal and no end face acts on its facing particles instead (systems/facing_particles.h:
-// the outlines' points extremal along N, taken anew each time).
+// ContactParams::facingParticles (contact `facing_particles`) an element with a fixed normal and
+// no end face measures its gap on its facing particles and its normal force acts there
+// (systems/facing_particles.h: the outlines' points extremal along N, taken anew each time);
+// its slip and friction force stay on d (contact_law.h contactLawSplit).
 // With ContactParams::newtonNormals (contact `normal_update` "newton"), every element whose
 // normal is neither forced nor an end face's (with "newton_frictionless": every frictionless
 // parallel element, once loop B diverged) recomputes N from the state and is linearised in it

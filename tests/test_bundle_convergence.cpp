@@ -10,6 +10,8 @@
 // spin held): free, the spin of a fibre whose contacts all slip has no stiffness.
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
+#include "systems/facing_particles.h"
+#include "systems/particle.h"
 
 #include <Eigen/Geometry>
 #include <doctest/doctest.h>
@@ -43,11 +45,20 @@ TEST_CASE("a 7-fibre bundle twisted a quarter turn under tension converges in ev
     CHECK(std::abs(torque) > 1e-3);  // N mm: the bundle resists the twist
     CHECK(force.norm() <= 1e-9 * scale);
     // The contact pairs' forces are equal and opposite but act at particles a gap apart: their
-    // net moment sum (x_I - x_J) x f_I is what the reactions balance.
-    const ContactSnapshot c = w.contactSnapshot();
+    // net moment sum (x_I - x_J) x f_I is what the reactions balance, the normal force's at the
+    // particles it acted on (facing ones), friction's at the material particles.
+    const ContactState& c = w.contact();
+    const Eigen::VectorXd& q = w.fibres().q;
+    const auto arm = [&](const ParticleWeights& I, const ParticleWeights& J) {
+      return Vec3(particlePosition(q, I) - particlePosition(q, J));
+    };
     Vec3 couple = Vec3::Zero();
-    for (Index e = 0; e < c.size(); ++e)
-      couple += Vec3(c.particleI[e] - c.particleJ[e]).cross(Vec3(c.normalForce[e] * c.normal[e] + c.friction[e]));
+    for (Index e = 0; e < c.elements.size(); ++e) {
+      const Vec3 normal = c.forces.normalForce[e] * c.forces.normal[e];
+      couple += arm(forceParticle(c.elements, c.forces, e, 0), forceParticle(c.elements, c.forces, e, 1))
+                    .cross(normal);
+      couple += arm(c.elements.sideI[e], c.elements.sideJ[e]).cross(Vec3(c.forces.force[e] - normal));
+    }
     CHECK(couple.norm() > 0);
     CHECK((moment + couple).norm() <= 1e-5 * couple.norm());
   }

@@ -178,13 +178,62 @@ TEST_CASE("frictionless contact acts on facing particles: the true gap, no torqu
   CHECK(w.trial.forces.facing.empty());  // nor any facing column stored
 }
 
+TEST_CASE("frictional contact on facing particles: the normal force on the outlines, friction's slip between the material particles, an exact tangent") {
+  // The crossing with mu = 0.3, B's sections spun by 20 deg after the detection (its material
+  // particle moves R sin 20 deg = 0.034 mm: in stick with g_T,max = 0.1 mm, in slip with 5e-4
+  // and B slid 3e-3 mm): the gap is the surfaces' (as frictionless), the slip the material
+  // particles' trial g_rev,0 + P (d - d_0), and the non-symmetric tangent, with the coupling of
+  // the normal force into friction, matches central differences.
+  for (double slide : {1e-5, 3e-3}) {
+    CAPTURE(slide);
+    WorldState w;
+    pressedCrossing(w, slide, 0.3, true);
+    if (slide < 1e-3) w.contact.gMax = 0.1;
+    const double a = 20 * std::numbers::pi / 180;
+    const Eigen::Matrix3d spin = Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix();
+    for (Index n = w.fibres.firstNode[1]; n < w.fibres.firstNode[1] + w.fibres.nodeCount[1]; ++n)
+      for (int g : {3, 6})
+        w.fibres.q.segment<3>(kNodeDofs * n + g) = spin * Vec3(w.fibres.q.segment<3>(kNodeDofs * n + g));
+    assembleAt(w, true);
+    const ContactElementStore& el = w.trial.elements;
+    const ContactForceStore& f = w.trial.forces;
+    REQUIRE(f.size() == 1);
+    REQUIRE(f.normalForce[0] > 0);
+    REQUIRE(f.facing[0] == 1);
+    CHECK(bool(f.slip[0]) == (slide > 1e-3));
+    const Vec3 N = f.normal[0];
+    const Section I = contactSection(w.fibres, w.fibres.q, el.fibreI[0], el.sI[0]);
+    const Section J = contactSection(w.fibres, w.fibres.q, el.fibreJ[0], el.sJ[0]);
+    const double R = w.fibres.radius[0];
+    const double surfaceGap = (I.x0 - J.x0).dot(N) - halfWidth(I, R, N) - halfWidth(J, R, N);
+    CHECK(f.gap[0] == doctest::Approx(surfaceGap).epsilon(1e-12).scale(1e-3));
+    // the material particles' gap is R (1 - cos 20 deg) wider on B's side
+    const Vec3 d = particlePosition(w.fibres.q, el.sideI[0]) - particlePosition(w.fibres.q, el.sideJ[0]);
+    CHECK(d.dot(N) - f.gap[0] == doctest::Approx(R * (1 - std::cos(a))).epsilon(0.05));
+    // the slip from the material particles
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - N * N.transpose();
+    const Vec3 trial = el.gRev0[0] + P * (d - el.d0[0]);
+    const Vec3 gRev = slide > 1e-3 ? Vec3(w.contact.gMax * trial.normalized()) : trial;
+    CHECK((f.gRev[0] - gRev).norm() <= 1e-12 * gRev.norm());
+    CHECK(gRev.norm() > 0.5 * R * std::sin(a) * (slide > 1e-3 ? 0 : 1));
+    const Vec3 friction = f.force[0] - f.normalForce[0] * N;
+    CHECK((friction + 0.3 * f.normalForce[0] / w.contact.gMax * gRev).norm() <=
+          1e-12 * f.normalForce[0]);
+    REQUIRE_FALSE(w.system.symmetric);
+    const Eigen::MatrixXd K = test::fullTangent(w.system);
+    const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
+    MESSAGE("|K - K_fd| / |K| = " << (K - Kfd).norm() / K.norm());
+    CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
+  }
+}
+
 TEST_CASE("a weighted line contact's tangent matches finite differences: facing particles, and in slip") {
   // Two parallel beams, A of 8 elements, B of 7 (the elements between both fibres' element ends
   // then differ in length), A pressed 8e-5 mm into its floor tool and B 8e-5 mm into A along their
   // length (p_max 1e-4: past the regularised penalty's 5e-5; at 0 or 5e-5 central differences
   // straddle a kink of the penalty and miss by O(h)): the weighted
-  // Gauss-point elements of a line contact. Frictionless: facing particles (the default);
-  // mu = 0.3: material particles, B then slid 3e-3 mm along x (past g_T,max).
+  // Gauss-point elements of a line contact, on facing particles (the default). mu = 0.3: B
+  // then slid 3e-3 mm along x (past g_T,max), friction on the material particles.
   for (double mu : {0.0, 0.3}) {
     CAPTURE(mu);
     WorldState w;
@@ -216,7 +265,7 @@ TEST_CASE("a weighted line contact's tangent matches finite differences: facing 
     CHECK(heaviest > 1.1 * lightest);  // unequal weights: the Gauss points' shares
     CHECK(pressed > 4);
     CHECK((sliding > 0) == (mu > 0));
-    CHECK((facing > 0) == (mu == 0));
+    CHECK(facing == el.size());
     const Eigen::MatrixXd K = test::fullTangent(w.system);  // both triangles
     const Eigen::MatrixXd Kfd = test::finiteDifferenceTangent(w, 0);
     MESSAGE("|K - K_fd| / |K| = " << (K - Kfd).norm() / K.norm());
