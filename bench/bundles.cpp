@@ -27,6 +27,7 @@
 #include "bench/contact_scenes.h"
 #include "engine/world.h"
 
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 
@@ -122,6 +123,21 @@ int main(int argc, char** argv) {
   NormalUpdate normalUpdate = ContactDef{}.normalUpdate;
   WorldDef def;
   def.threads = 2;
+  const char* known[] = {"--rings", "--mu", "--pmax", "--load", "--elements", "--threads",
+                         "--line-search", "--cycle-damping", "--damping", "--hold-after",
+                         "--normal-update", "--facing", "--end-spin", "--increments",
+                         "--tolerance"};
+  for (int i = 1; i < argc; i += 2) {
+    const bool ok = std::any_of(std::begin(known), std::end(known),
+                                [&](const char* k) { return !std::strcmp(argv[i], k); });
+    if (!ok || i + 1 == argc) {
+      std::fprintf(stderr, "bench_bundles: %s '%s'; options (each with a value):",
+                   ok ? "no value after" : "unknown option", argv[i]);
+      for (const char* k : known) std::fprintf(stderr, " %s", k);
+      std::fprintf(stderr, "\n");
+      return 2;
+    }
+  }
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--rings")) rings = parseList(argv[i + 1]);
     if (!std::strcmp(argv[i], "--mu")) mus = parseList(argv[i + 1]);
