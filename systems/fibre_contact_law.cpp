@@ -31,8 +31,8 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
     out.facing.assign(el.size(), 0);
     for (auto* side : {&out.facingI, &out.facingJ, &out.rollingI, &out.rollingJ})
       side->resize(el.size());
-    out.frictionStiffness.resize(el.size());
-    out.coupling.resize(el.size());
+    out.frictionStiffness.resize(el.size(), Eigen::Matrix3d::Zero());  // zero where not facing:
+    out.coupling.resize(el.size(), Eigen::Matrix3d::Zero());           // hashed, checkpointed
   }
   tbb::parallel_for(Index(0), el.size(), [&](Index e) {
     const Index z = el.zone[e];
