@@ -39,8 +39,8 @@ int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, const Cli
 // its stiffness on them, each outline's rolling stiffness R_N (R / rho) w w^T, and the friction
 // force f - R_N N on the material particles with its blocks on the material particles
 // (frictionStiffness) and on the facing ones (coupling).
-void scatterFacing(const ParticleWeights material[2], const ContactForceStore& f, Index e, Index clique,
-                   const CliqueSlots& slots, bool withTangent, LinearSystem& ls) {
+void scatterFacing(const ParticleWeights material[2], const ContactForceStore& f, Index e,
+                   Index clique, const CliqueSlots& slots, bool withTangent, LinearSystem& ls) {
   const double sign[2] = {1, -1}, one = 1;
   const ParticleWeights facing[2] = {f.facingI[e], f.facingJ[e]};
   const Vec3 normal = f.normalForce[e] * f.normal[e];
