@@ -92,6 +92,33 @@ void pressedCrossing(WorldState& w, double slide, double mu, bool facing = false
 
 void assembleAt(WorldState& w, bool tangent) { runStage(w, w.pipeline.assemble, 0, tangent); }
 
+// B's sections spun by `a` rad about its axis (y) after the detection (sheared: and made
+// elliptical): its material particles roll off the line of centres.
+void spinB(WorldState& w, double a, bool sheared = false) {
+  const Eigen::Matrix3d spin = Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix();
+  for (Index n = w.fibres.firstNode[1]; n < w.fibres.firstNode[1] + w.fibres.nodeCount[1]; ++n) {
+    const Vec3 g1 = spin * Vec3(w.fibres.q.segment<3>(kNodeDofs * n + 3));
+    const Vec3 g2 = spin * Vec3(w.fibres.q.segment<3>(kNodeDofs * n + 6));
+    w.fibres.q.segment<3>(kNodeDofs * n + 3) = sheared ? Vec3(1.05 * g1) : g1;
+    w.fibres.q.segment<3>(kNodeDofs * n + 6) = sheared ? Vec3(0.97 * g2 + 0.1 * g1) : g2;
+  }
+}
+
+// Element 0's sections and the surfaces' gap along the normal its force used:
+// (x0I - x0J) . N - R |G_I^T N| - R |G_J^T N| (systems/contact_queries.h halfWidth), mm.
+struct ElementSections {
+  Section I, J;
+  double surfaceGap;
+};
+ElementSections elementSections(const WorldState& w) {
+  const ContactElementStore& el = w.trial.elements;
+  const Vec3 N = w.trial.forces.normal[0];
+  const Section I = contactSection(w.fibres, w.fibres.q, el.fibreI[0], el.sI[0]);
+  const Section J = contactSection(w.fibres, w.fibres.q, el.fibreJ[0], el.sJ[0]);
+  const double RI = w.fibres.radius[el.fibreI[0]], RJ = w.fibres.radius[el.fibreJ[0]];
+  return {I, J, (I.x0 - J.x0).dot(N) - halfWidth(I, RI, N) - halfWidth(J, RJ, N)};
+}
+
 }  // namespace
 
 TEST_CASE("fibre contact tangent matches finite differences, in stick and in slip") {
@@ -115,29 +142,17 @@ TEST_CASE("frictionless contact acts on facing particles: the true gap, no torqu
     CAPTURE(sheared);
     WorldState w;
     pressedCrossing(w, 1e-5, 0, true);
-    // B's sections spun by 20 deg about its axis (y) after the detection (and, sheared, made
-    // elliptical): its material particles roll off the line of centres.
-    const double a = 20 * std::numbers::pi / 180;
-    const Eigen::Matrix3d spin = Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix();
-    for (Index n = w.fibres.firstNode[1]; n < w.fibres.firstNode[1] + w.fibres.nodeCount[1]; ++n) {
-      const Vec3 g1 = spin * Vec3(w.fibres.q.segment<3>(kNodeDofs * n + 3));
-      const Vec3 g2 = spin * Vec3(w.fibres.q.segment<3>(kNodeDofs * n + 6));
-      w.fibres.q.segment<3>(kNodeDofs * n + 3) = sheared ? Vec3(1.05 * g1) : g1;
-      w.fibres.q.segment<3>(kNodeDofs * n + 6) = sheared ? Vec3(0.97 * g2 + 0.1 * g1) : g2;
-    }
+    spinB(w, 20 * std::numbers::pi / 180, sheared);
     assembleAt(w, true);
     const ContactElementStore& el = w.trial.elements;
     const ContactForceStore& f = w.trial.forces;
     REQUIRE(f.size() == 1);
     REQUIRE(f.normalForce[0] > 0);
     REQUIRE(f.facing[0] == 1);
-    // The gap is the surfaces' along N: (x0I - x0J) . N - R |G_I^T N| - R |G_J^T N|, from the
-    // sections (systems/contact_queries.h halfWidth), not from the particles.
+    // The gap is the surfaces' along N, from the sections, not from the particles.
     const Vec3 N = f.normal[0];
-    const Section I = contactSection(w.fibres, w.fibres.q, el.fibreI[0], el.sI[0]);
-    const Section J = contactSection(w.fibres, w.fibres.q, el.fibreJ[0], el.sJ[0]);
+    const auto [I, J, surfaceGap] = elementSections(w);
     const double R = w.fibres.radius[0];
-    const double surfaceGap = (I.x0 - J.x0).dot(N) - halfWidth(I, R, N) - halfWidth(J, R, N);
     CHECK(f.gap[0] == doctest::Approx(surfaceGap).epsilon(1e-12).scale(1e-3));
     // Circular sections: the force passes both axes, no moment about either fibre's tangent,
     // where the spun section's material particle had one (an elliptical section's extremal
@@ -190,10 +205,7 @@ TEST_CASE("frictional contact on facing particles: the normal force on the outli
     pressedCrossing(w, slide, 0.3, true);
     if (slide < 1e-3) w.contact.gMax = 0.1;
     const double a = 20 * std::numbers::pi / 180;
-    const Eigen::Matrix3d spin = Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix();
-    for (Index n = w.fibres.firstNode[1]; n < w.fibres.firstNode[1] + w.fibres.nodeCount[1]; ++n)
-      for (int g : {3, 6})
-        w.fibres.q.segment<3>(kNodeDofs * n + g) = spin * Vec3(w.fibres.q.segment<3>(kNodeDofs * n + g));
+    spinB(w, a);
     assembleAt(w, true);
     const ContactElementStore& el = w.trial.elements;
     const ContactForceStore& f = w.trial.forces;
@@ -202,11 +214,8 @@ TEST_CASE("frictional contact on facing particles: the normal force on the outli
     REQUIRE(f.facing[0] == 1);
     CHECK(bool(f.slip[0]) == (slide > 1e-3));
     const Vec3 N = f.normal[0];
-    const Section I = contactSection(w.fibres, w.fibres.q, el.fibreI[0], el.sI[0]);
-    const Section J = contactSection(w.fibres, w.fibres.q, el.fibreJ[0], el.sJ[0]);
     const double R = w.fibres.radius[0];
-    const double surfaceGap = (I.x0 - J.x0).dot(N) - halfWidth(I, R, N) - halfWidth(J, R, N);
-    CHECK(f.gap[0] == doctest::Approx(surfaceGap).epsilon(1e-12).scale(1e-3));
+    CHECK(f.gap[0] == doctest::Approx(elementSections(w).surfaceGap).epsilon(1e-12).scale(1e-3));
     // the material particles' gap is R (1 - cos 20 deg) wider on B's side
     const Vec3 d = particlePosition(w.fibres.q, el.sideI[0]) - particlePosition(w.fibres.q, el.sideJ[0]);
     CHECK(d.dot(N) - f.gap[0] == doctest::Approx(R * (1 - std::cos(a))).epsilon(0.05));
