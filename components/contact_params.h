@@ -125,6 +125,9 @@ struct ContactParams {
   ContactClasses pairs;
   // --- forced normals of the current step (StepDef::forcedNormal; set by the step driver) ---
   Vec3 forcedNormal = Vec3::Zero();  // unit; zero: the normal rules of eq. 10
+  // mm, >= 0: the overlap a forced element's gap allows in the current attempt (the step's
+  // StepDef::forcedAllowance released linearly to 0 at its end; set by the step driver)
+  double forcedAllowance = 0;
   double frictionFactor = 1;  // the current step's factor on every mu (StepDef::frictionFactor)
   bool unstableNormals = false;  // loop B's update of the normals diverged in this attempt (set
                                  // by the contact loops, cleared by the step driver)

@@ -153,8 +153,14 @@ void checkForcedPairs(const SceneDef& s, const ContactClasses& c, const std::str
 void checkForcedNormals(const SceneDef& s, const ContactClasses& c) {
   for (size_t i = 0; i < s.steps.size(); ++i) {
     const Vec3& d = s.steps[i].forcedNormal;
-    if (d.squaredNorm() == 0) continue;
+    const double allowance = s.steps[i].forcedAllowance;
     const std::string path = at("steps", i) + ".forced_normals";
+    if (!(allowance >= 0) || !std::isfinite(allowance))
+      throw SceneError(path + ".allowance: must be a finite overlap >= 0, mm");
+    if (d.squaredNorm() == 0) {
+      if (allowance > 0) throw SceneError(path + ".allowance: needs a forced direction");
+      continue;
+    }
     if (!s.contact.enabled) throw SceneError(path + ": needs fibre contact (a contact section)");
     if (!d.allFinite() || std::abs(d.norm() - 1) > 1e-12)
       throw SceneError(path + ".direction: must be a finite unit vector");

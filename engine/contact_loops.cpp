@@ -72,12 +72,12 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
 void checkContactSet(WorldState& w, double t, ContactReport& report) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
-  const Overlap o = trueOverlap(w.fibres, w.fibres.q, w.trial);
+  const Overlap o = trueOverlap(w.fibres, w.fibres.q, w.trial, w.contact);
   report.maxOverlap = o.depth;
   report.maxOverlapRatio = o.ratio;
   report.overlapFibreI = int(o.fibreI), report.overlapFibreJ = int(o.fibreJ);
   report.overlapSI = o.sI, report.overlapSJ = o.sJ;
-  compareContactSets(w.fibres, used, w.trial, report);
+  compareContactSets(w.fibres, used, w.trial, w.contact, report);
   w.trial = std::move(used);
 }
 

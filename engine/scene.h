@@ -138,6 +138,10 @@ struct StepDef {
   // During the step, between fibres of different contact classes whose levels differ at the
   // element, N = +D when I's level is the higher, else -D (docs/SCENE.md).
   Vec3 forcedNormal = Vec3::Zero();
+  // Gradual push-apart of the forced pairs, mm, >= 0 (`forced_normals.allowance`): a forced
+  // element's gap is widened by A (t_end - t) / (t_end - t_start) at the attempt's end time t, so
+  // that the step removes an overlap of A in equal parts instead of all in its first increment.
+  double forcedAllowance = 0;
   // Factor on every friction coefficient (fibre pairs and tools) during the step, >= 0: 0 turns
   // friction off (a forced-normals step), 1 the scene's values.
   double frictionFactor = 1;

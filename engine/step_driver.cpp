@@ -8,7 +8,8 @@
 //      started from the predictor is tried again at its size without it, any other cuts the
 //      attempt's size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
 //      state. Where nothing the scene prescribes changes over the failed attempt and the step
-//      has no damping, a smaller attempt would repeat it exactly: the step fails at once. The
+//      has no damping nor forced allowance (which is released with time), a smaller attempt
+//      would repeat it exactly: the step fails at once. The
 //      attempt size adapts (nextIncrement): it grows back after easy attempts, up to the
 //      nominal increment, and carries over to the next increment of the step, whose end is
 //      always reached exactly (frames and history rows stay on the nominal times);
@@ -113,11 +114,15 @@ double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonR
 }
 
 // The trial starts from the last converged state; the continuation's c/dt for its size; the
-// step's forced normals (zero: the normal rules) for the detections and normal updates, and its
-// factor on the friction coefficients.
-void beginAttempt(WorldState& w, const StepDef& st, double size) {
+// step's forced normals (zero: the normal rules) for the detections and normal updates, the
+// overlap they allow at the attempt's end time tTry, A (t_end - tTry) / (t_end - t_start), and
+// its factor on the friction coefficients.
+void beginAttempt(WorldState& w, const StepDef& st, double tTry, double tStart) {
+  const double size = tTry - w.time;
   if (hasContact(w)) w.trial = w.committed;
   w.contact.forcedNormal = st.forcedNormal;
+  w.contact.forcedAllowance =
+      st.forcedAllowance * std::max(0.0, st.endTime - tTry) / (st.endTime - tStart);
   w.contact.frictionFactor = st.frictionFactor;
   w.contact.unstableNormals = false;
   setSymmetric(w, symmetricTangent(w));
@@ -207,7 +212,7 @@ NewtonResult attempt(WorldState& w, const StepDef& st, double tTry, double tStar
                      StepReport& rep) {
   StepTimings& timings = rep.timings;
   ContactReport& contact = rep.contact;
-  beginAttempt(w, st, tTry - w.time);
+  beginAttempt(w, st, tTry, tStart);
   NewtonCallbacks cb;
   cb.assemble = [&w, tTry](bool withTangent) { runStage(w, w.pipeline.assemble, tTry, withTangent); };
   cb.cancel = [&w] { return w.cancel(); };
@@ -335,14 +340,20 @@ StepReport advance(WorldState& w) {
     w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled) return stop(StepStatus::Cancelled, "cancelled");
-    if (!(st.damping > 0) && nothingPrescribedChanges(w.scene, w.time, tTry))
+    if (!(st.damping > 0) && !(st.forcedAllowance > 0) &&
+        nothingPrescribedChanges(w.scene, w.time, tTry))
       return stop(StepStatus::Failed,
                   "increment to t = " + number(t1) + " failed: " + nr.message +
                       "; a smaller increment would repeat this attempt exactly: nothing the "
                       "scene prescribes changes from t = " + number(w.time) + " to " +
                       number(tTry) + " and the step has no damping (ramp the loads or the "
                       "motion over the step with a table, or give the step a `damping`, the "
-                      "viscous continuation, so that a smaller increment is a smaller change)");
+                      "viscous continuation, so that a smaller increment is a smaller change" +
+                      std::string(st.forcedNormal.squaredNorm() > 0
+                                      ? "; or `forced_normals.allowance`, the overlap the step "
+                                        "removes in equal parts"
+                                      : "") +
+                      ")");
     if (++rep.cutbacks > st.maxCutbacks)
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
                                           std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message);

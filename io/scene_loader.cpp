@@ -143,7 +143,7 @@ StepDef readStep(const Json& j, const std::string& path) {
   s.outputEvery = f.integer("output_every", s.outputEvery);
   s.frictionFactor = f.number("friction_factor", s.frictionFactor);
   if (f.has("forced_normals"))
-    s.forcedNormal = readForcedNormals(f.at("forced_normals"), f.path("forced_normals"));
+    readForcedNormals(f.at("forced_normals"), f.path("forced_normals"), s);
   return s;
 }
 

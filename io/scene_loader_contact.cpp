@@ -5,6 +5,8 @@
 #include "io/json_reader.h"
 #include "io/scene_sections.h"
 
+#include <cmath>
+
 namespace fibra::scene_sections {
 
 using namespace json_reader;
@@ -51,11 +53,14 @@ ContactPairDef readContactPair(const Json& j, const std::string& path) {
   return d;
 }
 
-Vec3 readForcedNormals(const Json& j, const std::string& path) {
-  const Fields f(j, path, {"direction"});
+void readForcedNormals(const Json& j, const std::string& path, StepDef& s) {
+  const Fields f(j, path, {"direction", "allowance"});
   const Vec3 d = asVec3(f.at("direction"), f.path("direction"));
   if (!(d.norm() > 0) || !d.allFinite()) fail(f.path("direction"), "must be a non-zero vector");
-  return d.normalized();
+  s.forcedNormal = d.normalized();
+  s.forcedAllowance = f.number("allowance", 0.0);
+  if (!(s.forcedAllowance >= 0) || !std::isfinite(s.forcedAllowance))
+    fail(f.path("allowance"), "must be a finite overlap >= 0, mm");
 }
 
 }  // namespace fibra::scene_sections

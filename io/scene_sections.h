@@ -34,6 +34,8 @@ SolverDef readSolver(const Json& j, const std::string& path);
 // scene_loader_contact.cpp
 std::vector<LevelDef> readLevels(const Json& j, const std::string& path);
 ContactPairDef readContactPair(const Json& j, const std::string& path);
-Vec3 readForcedNormals(const Json& j, const std::string& path);
+// A step's `forced_normals` object: {"direction": D, "allowance": A (mm, default 0)} into
+// StepDef::forcedNormal (unit) and forcedAllowance; errors name the field.
+void readForcedNormals(const Json& j, const std::string& path, StepDef& s);
 
 }  // namespace fibra::scene_sections

@@ -530,7 +530,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.xiJ1[e] = xiJ[0];
     el.xiJ2[e] = xiJ[1];
     const NormalGap ng =
-        forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * p.forcedNormal)
+        forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * p.forcedNormal, p.forcedAllowance)
                : normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J], p.thetaParallel,
                               p.thetaCross, flags);
     el.normal[e] = ng.normal;

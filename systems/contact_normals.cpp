@@ -26,12 +26,12 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
 }
 
 NormalGap forcedNormalAndGap(const Section& I, const Section& J, const double xiI[2],
-                             const double xiJ[2], const Vec3& N) {
+                             const double xiJ[2], const Vec3& N, double allowance) {
   const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
   const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
   const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
   const double theta = std::atan2(tI.cross(tJ).norm(), std::abs(tI.dot(tJ)));
-  return {N, (xI - xJ).dot(N), theta, 0, false};
+  return {N, (xI - xJ).dot(N) + allowance, theta, 0, false};
 }
 
 void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
@@ -49,7 +49,8 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
           const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
           const int forced = forcedSign(params, fI, el.sI[e], fJ, el.sJ[e]);
           const NormalGap ng =
-              forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * params.forcedNormal)
+              forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * params.forcedNormal,
+                                          params.forcedAllowance)
                      : normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
                                     params.thetaParallel, params.thetaCross, el.fallback[e]);
           // A linearised normal already is the state's: only fixed ones can ask for a pass.

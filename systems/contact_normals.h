@@ -140,9 +140,10 @@ NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
                        double thetaCross, std::uint8_t flags = 0);
 
-// A forced normal N (unit) and the gap gN = (xI(xi_I) - xJ(xi_J)).N; theta as above, crossWeight 0.
+// A forced normal N (unit) and the gap gN = (xI(xi_I) - xJ(xi_J)).N + allowance (mm, the
+// overlap the step still allows: ContactParams::forcedAllowance); theta as above, crossWeight 0.
 NormalGap forcedNormalAndGap(const Section& I, const Section& J, const double xiI[2],
-                             const double xiJ[2], const Vec3& N);
+                             const double xiJ[2], const Vec3& N, double allowance);
 
 // Loop B: eqs. 10-11 (or the forced normal) again at the state q for the same particles; the
 // friction reference's slip g_rev,0 re-projected onto the new tangent plane; stats.normalTurn =

@@ -57,4 +57,11 @@ inline int forcedSign(const ContactParams& p, Index I, double sI, Index J, doubl
   return lI > lJ ? 1 : lI < lJ ? -1 : 0;
 }
 
+// The overlap a forced element's gap allows in the current attempt (ContactParams::
+// forcedAllowance, mm; 0 for an element whose normal is not forced): its gap is
+// D.(x_over - x_under) - (R_over + R_under) + allowance.
+inline double forcedAllowance(const ContactParams& p, Index I, double sI, Index J, double sJ) {
+  return p.forcedAllowance > 0 && forcedSign(p, I, sI, J, sJ) ? p.forcedAllowance : 0.0;
+}
+
 }  // namespace fibra

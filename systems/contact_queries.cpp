@@ -1,6 +1,7 @@
 #include "systems/contact_queries.h"
 
 #include "systems/contact_geometry.h"
+#include "systems/contact_params.h"
 #include "systems/facing_particles.h"
 #include "systems/particle.h"
 #include "systems/tool_geometry.h"
@@ -91,7 +92,8 @@ double faceDepth(const Section& S, double R, const Vec3& x) {
 
 }  // namespace
 
-Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactState& detected) {
+Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactState& detected,
+                    const ContactParams& params) {
   const ContactElementStore& el = detected.elements;
   Overlap deepest;
   for (Index e = 0; e < el.size(); ++e) {
@@ -110,7 +112,8 @@ Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Contac
       const double dist = d.norm();
       // coincident centres (a full overlap): the width across I's first director
       const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
-      depth = halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist;
+      depth = halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist -
+              forcedAllowance(params, fI, el.sI[e], fJ, el.sJ[e]);
     }
     deepest.depth = std::max(deepest.depth, depth);
     const double ratio = depth / detected.zones.pMax[el.zone[e]];
@@ -132,18 +135,20 @@ double shift(double ds, double dxi1, double dxi2, double R) {
 // Element b's gap at the state fs.q as the solve measured its counterpart: between the facing
 // particles along b's normal where the used element acted on facing particles
 // (systems/facing_particles.h), else the detection's own (material particles), mm.
-double freshGap(const FibreStore& fs, const ContactElementStore& ef, Index b, bool facing) {
+double freshGap(const FibreStore& fs, const ContactParams& p, const ContactElementStore& ef,
+                Index b, bool facing) {
   FacingSide I, J;
   if (!facing || !facingSide(fs.q, ef.sideI[b], fs.radius[ef.fibreI[b]], -ef.normal[b], I) ||
       !facingSide(fs.q, ef.sideJ[b], fs.radius[ef.fibreJ[b]], ef.normal[b], J))
     return ef.gap[b];
-  return (I.position - J.position).dot(ef.normal[b]);
+  return (I.position - J.position).dot(ef.normal[b]) +
+         forcedAllowance(p, ef.fibreI[b], ef.sI[b], ef.fibreJ[b], ef.sJ[b]);
 }
 
 }  // namespace
 
 void compareContactSets(const FibreStore& fs, const ContactState& used, const ContactState& fresh,
-                        ContactReport& r) {
+                        const ContactParams& params, ContactReport& r) {
   const ZoneStore &zu = used.zones, &zf = fresh.zones;
   const ContactElementStore &eu = used.elements, &ef = fresh.elements;
   std::unordered_map<std::uint64_t, Index> usedZone;
@@ -162,7 +167,7 @@ void compareContactSets(const FibreStore& fs, const ContactState& used, const Co
     for (Index k = 0; k < zf.elementCount[z]; ++k) {
       const Index a = zu.firstElement[o] + k, b = zf.firstElement[z] + k;
       const bool facing = a < Index(used.forces.facing.size()) && used.forces.facing[a];
-      const double gap = freshGap(fs, ef, b, facing);
+      const double gap = freshGap(fs, params, ef, b, facing);
       if (std::min(gap, used.forces.gap[a]) >= 0) continue;  // open in both
       r.redetectGapChange =
           std::max(r.redetectGapChange, std::abs(gap - used.forces.gap[a]) / zu.pMax[o]);

@@ -28,7 +28,9 @@
 //                     (kEndFaceI/J) the face point's depth below the other fibre's surface,
 //                     w - |P_t (x - x0)| with w its half-width along P_t (x - x0); 0 when none
 //                     overlaps; mm. Independent of the elements a state was solved with: it
-//                     measures what they may under-report.
+//                     measures what they may under-report. A forced element's depth is less
+//                     the overlap its step still allows (ContactParams::forcedAllowance), as
+//                     its gap is.
 // compareContactSets  a detection from the accepted state (`fresh`) against the set the state
 //                     was solved with (`used`): zones paired by id; zones without a partner or
 //                     with another element count are counted; elements of paired zones paired
@@ -37,7 +39,8 @@
 //                     element's force acted on facing particles, systems/facing_particles.h:
 //                     like for like) and the largest particle
 //                     shift sqrt(ds^2 + |dxi|^2) / R of either side (s arc length, xi section
-//                     coordinates, R the side's radius).
+//                     coordinates, R the side's radius); forced elements' gaps with their
+//                     allowance, as the solve measured them.
 // toolOverlap         a tool's deepest overlap with the fibres: max over sections of w - d, d the
 //                     centroid's signed distance from the tool's surface at time t and
 //                     w = R |G^T n| the section's half-width along the surface normal n there
@@ -87,7 +90,7 @@ struct Overlap {
   double sI = 0, sJ = 0;           // the reference arc lengths of its sections, mm
 };
 Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
-                    const ContactState& detected);
+                    const ContactState& detected, const ContactParams& params);
 
 // Tool `tool`'s deepest overlap with the fibres of state q at pseudo-time t (mm; 0 and element -1
 // when none overlaps it), and where: the element and its parameter z in [-1, 1].
@@ -105,6 +108,6 @@ ToolOverlap toolOverlap(const FibreStore& fibres, const Eigen::VectorXd& q, cons
 
 // Fills r.redetectZoneChanges, redetectGapChange, redetectParticleShift.
 void compareContactSets(const FibreStore& fibres, const ContactState& used,
-                        const ContactState& fresh, ContactReport& r);
+                        const ContactState& fresh, const ContactParams& params, ContactReport& r);
 
 }  // namespace fibra

@@ -45,12 +45,17 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
       out.normalJacobian[e] = c.jacobian;
       return;
     }
-    const Vec3 d = particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]);
+    // a forced element's allowance widens its gap: d shifted along N (a constant of q; N's
+    // tangent plane, where the slip lives, is unchanged)
+    const Vec3 widen = forcedAllowance(p, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]) *
+                       el.normal[e];
+    const Vec3 d =
+        particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]) + widen;
     FacingSide I, J;
     if (facingElement(p, el, e) &&
         facingSide(fs.q, el.sideI[e], fs.radius[el.fibreI[e]], -el.normal[e], I) &&
         facingSide(fs.q, el.sideJ[e], fs.radius[el.fibreJ[e]], el.normal[e], J)) {
-      const ContactLawResult r = contactLawSplit(I.position - J.position, d,
+      const ContactLawResult r = contactLawSplit(I.position - J.position + widen, d,
                                                  {el.normal[e], el.d0[e], el.gRev0[e]}, law,
                                                  p.symmetrised, status.held[e]);
       storeContactLaw(r, e, out);

@@ -225,6 +225,12 @@ TEST_CASE("pair rules and levels that cannot hold are scene errors naming the fi
         }) == "steps[1].forced_normals: needs fibre contact (a contact section)");
   CHECK(errorWith([](SceneDef& s) { s.steps[0].forcedNormal = Vec3(0, 0, 2); }) ==
         "steps[0].forced_normals.direction: must be a finite unit vector");
+  CHECK(errorWith([](SceneDef& s) {
+          s.steps[0].forcedNormal = Vec3::UnitZ();
+          s.steps[0].forcedAllowance = -1e-3;
+        }) == "steps[0].forced_normals.allowance: must be a finite overlap >= 0, mm");
+  CHECK(errorWith([](SceneDef& s) { s.steps[1].forcedAllowance = 0.1; }) ==
+        "steps[1].forced_normals.allowance: needs a forced direction");
 }
 
 TEST_CASE("a rule's penalty bound that conflicts with the section's names the rule's own field") {
@@ -326,6 +332,12 @@ TEST_CASE("the scene file reads classes, level tables, pair rules and forced nor
   j["steps"][0]["forced_normals"]["direction"] = {0, 0, -3};
   const SceneDef r = loadSceneFromString(j.dump(), "s.json");
   CHECK(r.steps[0].forcedNormal == -Vec3::UnitZ());
+  CHECK(r.steps[0].forcedAllowance == 0);
+  j["steps"][0]["forced_normals"]["allowance"] = -0.1;
+  CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
+        "s.json: steps[0].forced_normals.allowance: must be a finite overlap >= 0, mm");
+  j["steps"][0]["forced_normals"]["allowance"] = 0.25;
+  CHECK(loadSceneFromString(j.dump(), "s.json").steps[0].forcedAllowance == 0.25);
   REQUIRE(r.fibres[0].levels.size() == 2);
   CHECK(r.fibres[0].levels[1].from == 2);
   CHECK(r.fibres[0].levels[1].level == -1);

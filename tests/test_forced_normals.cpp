@@ -20,6 +20,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <utility>
 
 using namespace fibra;
 using namespace fibra::test;
@@ -41,11 +42,12 @@ SceneDef cutCrossing(double levelA, double mu) {
   return s;
 }
 
-// Detection at the start of the forced step.
-void detectForced(WorldState& w, const SceneDef& s) {
+// Detection at the start of the forced step, with the overlap it allows (mm).
+void detectForced(WorldState& w, const SceneDef& s, double allowance = 0) {
   w.scene = s;
   buildWorld(w);
   w.contact.forcedNormal = s.steps[0].forcedNormal;
+  w.contact.forcedAllowance = allowance;
   runStage(w, w.pipeline.detect, 0);
 }
 
@@ -142,19 +144,23 @@ TEST_CASE("the normal rules come back for equal levels and for fibres of one cla
 }
 
 TEST_CASE("contact tangent under forced normals matches finite differences, in stick and in slip") {
-  for (double slide : {1e-5, 3e-3}) {
+  // With an allowance a (the gap widened by a constant), the same penetration a lower lift.
+  for (const auto& [slide, allowance] : {std::pair{1e-5, 0.0}, {3e-3, 0.0}, {1e-5, 0.05}, {3e-3, 0.05}}) {
     CAPTURE(slide);
+    CAPTURE(allowance);
     WorldState w;
-    detectForced(w, cutCrossing(1, 0.3));
+    detectForced(w, cutCrossing(1, 0.3), allowance);
     // Lift A part of the way out of B and slide it: penetrating, with friction.
     for (Index n = w.fibres.firstNode[0]; n < w.fibres.firstNode[0] + w.fibres.nodeCount[0]; ++n)
-      x0Of(w.fibres.q, n) += Vec3(0.3 * slide, slide, 0.2 - 6e-4);
+      x0Of(w.fibres.q, n) += Vec3(0.3 * slide, slide, 0.2 - 6e-4 - allowance);
     assembleAt(w, true);
     const ContactForceStore& f = w.trial.forces;
     REQUIRE(f.size() > 0);
     Index loaded = 0;
     for (Index e = 0; e < f.size(); ++e) loaded += f.normalForce[e] > 0;
     REQUIRE(loaded > 0);
+    for (Index e = 0; e < f.size(); ++e)  // the centres 0.2 - 6e-4 - a apart along +z
+      if (f.normalForce[e] > 0) CHECK(std::abs(f.gap[e] + 6e-4) < 1e-9);
     bool slips = false;
     for (Index e = 0; e < f.size(); ++e) slips = slips || f.slip[e];
     CHECK(slips == (slide > 1e-3));
@@ -199,6 +205,53 @@ TEST_CASE("forced normals push two flat interpenetrating yarns apart, the over y
       CHECK(c.fromJtoI.z() > 0.99 * c.distance);
       CHECK(c.distance >= 2 * R - 1.5 * pMax);
     }
+}
+
+TEST_CASE("a forced step's allowance removes the yarns' overlap in equal parts") {
+  SceneDef scene = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  const double R = 0.1, pMax = 5e-4;
+  const double A = 2 * R;  // the flat start's overlap: the centrelines cut each other
+  scene.steps[0].forcedAllowance = A;
+  const int n = scene.steps[0].increments;
+  World w(scene);
+  const FibreStore& fs = w.fibres();
+  // The deepest warp-weft overlap 2R - d, d the closest approach of the centrelines (from the
+  // nodes alone, independent of the contact elements), and the smallest height of the warp
+  // fibre over the weft fibre there.
+  const auto deepestOverlap = [&](double& lowestOver) {
+    double deepest = -1e300;
+    lowestOver = 1e300;
+    for (Index I = 0; I < 3; ++I)
+      for (Index J = 3; J < 6; ++J) {
+        const double xJ = x0Of(fs.qRef, fs.firstNode[J]).x(), yI = x0Of(fs.qRef, fs.firstNode[I]).y();
+        const Closest c = closestApproach(fs, fs.q, I, J, xJ + 2, yI + 2);
+        deepest = std::max(deepest, 2 * R - c.distance);
+        lowestOver = std::min(lowestOver, c.fromJtoI.z());
+      }
+    return deepest;
+  };
+  for (int k = 1; k <= n; ++k) {
+    CAPTURE(k);
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    // What the step still allows after increment k; the overlap beyond it is the penalty's
+    // penetration, about p_max, and the elements report it as such.
+    const double allowed = A * (1 - double(k) / n);
+    double lowestOver;
+    const double overlap = deepestOverlap(lowestOver);
+    MESSAGE("increment " << k << ": allowance " << allowed << " mm, deepest overlap " << overlap
+                         << " mm, reported penetration " << r.contact.maxPenetration << " mm, "
+                         << r.totalIterations << " Newton iterations");
+    CHECK(overlap <= allowed + 1.5 * pMax);
+    CHECK(overlap >= allowed);
+    CHECK(r.contact.maxPenetration <= 1.5 * pMax);
+    CHECK(lowestOver > 0);  // the warp yarn moved up, the weft yarn down
+  }
+  CHECK(w.currentStep() == 1);
+  double lowestOver;
+  CHECK(deepestOverlap(lowestOver) <= pMax);
+  REQUIRE(w.step().status == StepStatus::Converged);  // the normal rules
+  CHECK(w.finished());
 }
 
 TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' level tables") {
