@@ -98,10 +98,12 @@ std::string forcedLines(const SceneDef& s) {
   std::string out;
   for (size_t i = 0; i < s.steps.size(); ++i) {
     const Vec3& d = s.steps[i].forcedNormal;
+    const double a = s.steps[i].forcedAllowance;
     if (d.squaredNorm() > 0)
-      out += format("  forced normals: step %zu%s along [%g, %g, %g]\n", i + 1,
+      out += format("  forced normals: step %zu%s along [%g, %g, %g]%s\n", i + 1,
                     s.steps[i].name.empty() ? "" : (" (" + s.steps[i].name + ")").c_str(), d.x(),
-                    d.y(), d.z());
+                    d.y(), d.z(),
+                    a > 0 ? format(", allowance %g mm released over the step", a).c_str() : "");
   }
   return out;
 }

@@ -197,10 +197,13 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   j["contact"]["facing_particles"] = false;
   j["contact"]["normal_update"] = "loop";
   j["solver"] = {{"strategy", "mumps"}, {"ordering", "metis"}, {"blr_tolerance", 1e-6}};
+  j["steps"][0]["forced_normals"]["allowance"] = 0.2;
   writeFile(scratch / "choices.json", j.dump());
   const RunResult c = runFibra({"check", scratch / "choices.json"}, scratch);
   REQUIRE(c.status == 0);
   CHECK(c.output.find("initial penalty 100 N/mm, ") != std::string::npos);
+  CHECK(c.output.find("  forced normals: step 1 (initial_geometry) along [0, 0, 1], allowance 0.2 "
+                      "mm released over the step\n") != std::string::npos);
   CHECK(c.output.find(", loops A <= 3, B <= 3, crossings follow the closest points, frictionless "
                       "forces on material particles (the paper's)\n") != std::string::npos);
   CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, on K's "
