@@ -35,7 +35,8 @@
 // (systems/contact_params.h, forcedSign), whatever the centrelines do: they may cross (d = 0,
 // eq. 10 undefined) or I may still lie below J. Its particles were put on the outlines facing
 // along N at generation (I's towards -N, J's towards +N, systems/contact_elements.cpp), so that
-// for circular sections gN = (x0I - x0J).N - (R_I + R_J): negative until I has passed over J.
+// for circular sections gN = (x0I - x0J).N - (R_I + R_J) + a: negative until I has passed over J
+// (a the overlap the step still allows, ContactParams::forcedAllowance; 0 without).
 // N is constant, so the law's linearisation (fixed N, systems/contact_law.h) is exact.
 #pragma once
 

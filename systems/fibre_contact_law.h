@@ -1,7 +1,8 @@
 // Fibre-fibre contact law system: the force and stiffness of every fibre-fibre contact element at
 // the current state, for fixed particles and normals (paper section 4).
 //
-// Reads  FibreStore (q), ContactParams (p_reg / p_max, g_T,max, symmetrised), ZoneStore
+// Reads  FibreStore (q), ContactParams (p_reg / p_max, g_T,max, symmetrised; the forced
+//        normals' classes, levels and allowance: a forced element's d is shifted by a N), ZoneStore
 //        (penalty, p_max and mu per zone: its pair class's), ContactElementStore (particle
 //        weights, element weight w_e, normal, friction reference).
 //        IterationInput (with or without the tangent).

@@ -150,6 +150,12 @@ TEST_CASE("contact tangent under forced normals matches finite differences, in s
     CAPTURE(allowance);
     WorldState w;
     detectForced(w, cutCrossing(1, 0.3), allowance);
+    // the detection and loop B measure the crossing's gap with the allowance: -2R + a
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1) runStage(w, w.pipeline.normals, 0);
+      for (Index e = 0; e < w.trial.elements.size(); ++e)
+        CHECK(std::abs(w.trial.elements.gap[e] - (-0.2 + allowance)) < 1e-12);
+    }
     // Lift A part of the way out of B and slide it: penetrating, with friction.
     for (Index n = w.fibres.firstNode[0]; n < w.fibres.firstNode[0] + w.fibres.nodeCount[0]; ++n)
       x0Of(w.fibres.q, n) += Vec3(0.3 * slide, slide, 0.2 - 6e-4 - allowance);
@@ -245,6 +251,7 @@ TEST_CASE("a forced step's allowance removes the yarns' overlap in equal parts")
     CHECK(overlap <= allowed + 1.5 * pMax);
     CHECK(overlap >= allowed);
     CHECK(r.contact.maxPenetration <= 1.5 * pMax);
+    CHECK(r.contact.redetectGapChange < 0.1);  // the acceptance's fresh gaps with the allowance
     CHECK(lowestOver > 0);  // the warp yarn moved up, the weft yarn down
   }
   CHECK(w.currentStep() == 1);
@@ -252,6 +259,29 @@ TEST_CASE("a forced step's allowance removes the yarns' overlap in equal parts")
   CHECK(deepestOverlap(lowestOver) <= pMax);
   REQUIRE(w.step().status == StepStatus::Converged);  // the normal rules
   CHECK(w.finished());
+}
+
+TEST_CASE("a forced step without an allowance fails at once, with one it cuts back") {
+  // Too few iterations for the first increment: without an allowance nothing changes with t,
+  // so a smaller increment would repeat the attempt (the message says what to give); with one,
+  // a smaller increment pushes less, and the step cuts back.
+  SceneDef scene = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  scene.steps[0].maxIterations = 3;
+  for (double allowance : {0.0, 0.2}) {
+    CAPTURE(allowance);
+    scene.steps[0].forcedAllowance = allowance;
+    World w(scene);
+    const StepReport r = w.step();
+    const bool atOnce = r.message.find("would repeat this attempt exactly") != std::string::npos;
+    if (allowance == 0) {
+      CHECK(r.status == StepStatus::Failed);
+      CHECK(atOnce);
+      CHECK(r.message.find("forced_normals.allowance") != std::string::npos);
+    } else {
+      CHECK(!atOnce);
+      CHECK(r.cutbacks > 0);
+    }
+  }
 }
 
 TEST_CASE("forced normals weave a flat 2 x 2 plain weave by the warp fibres' level tables") {
