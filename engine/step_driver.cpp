@@ -8,8 +8,8 @@
 //      started from the predictor is tried again at its size without it, any other cuts the
 //      attempt's size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
 //      state. Where nothing the scene prescribes changes over the failed attempt and the step
-//      has no damping nor forced allowance (which is released with time), a smaller attempt
-//      would repeat it exactly: the step fails at once. The
+//      has no damping, a smaller attempt would repeat it exactly (a forced allowance changes
+//      with time: nothingPrescribedChanges): the step fails at once. The
 //      attempt size adapts (nextIncrement): it grows back after easy attempts, up to the
 //      nominal increment, and carries over to the next increment of the step, whose end is
 //      always reached exactly (frames and history rows stay on the nominal times);
@@ -46,11 +46,12 @@ bool constantOver(const Table& table, double a, double b) {
   return true;
 }
 
-// Whether the loads, the held DOFs' motion and the tools' motion are all constant over [a, b]:
-// then, without damping, an attempt from a to any time in (a, b] solves the same equations
-// from the same state (the friction history and the stabilisation's anchor are those of the
-// converged state at a).
-bool nothingPrescribedChanges(const SceneDef& s, double a, double b) {
+// Whether the loads, the held DOFs' motion, the tools' motion and the step's forced allowance
+// (released with t) are all constant over [a, b]: then, without damping, an attempt from a to
+// any time in (a, b] solves the same equations from the same state (the friction history and
+// the stabilisation's anchor are those of the converged state at a).
+bool nothingPrescribedChanges(const SceneDef& s, const StepDef& st, double a, double b) {
+  if (st.forcedAllowance > 0) return false;
   // A table scales a vector: a zero vector's table changes nothing.
   const auto moves = [&](const Vec3& v, const Table& t) {
     return !v.isZero(0) && !constantOver(t, a, b);
@@ -340,8 +341,7 @@ StepReport advance(WorldState& w) {
     w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled) return stop(StepStatus::Cancelled, "cancelled");
-    if (!(st.damping > 0) && !(st.forcedAllowance > 0) &&
-        nothingPrescribedChanges(w.scene, w.time, tTry))
+    if (!(st.damping > 0) && nothingPrescribedChanges(w.scene, st, w.time, tTry))
       return stop(StepStatus::Failed,
                   "increment to t = " + number(t1) + " failed: " + nr.message +
                       "; a smaller increment would repeat this attempt exactly: nothing the "
