@@ -88,6 +88,9 @@ struct ContactElementStore {
   std::vector<double> theta;       // angle between the centreline tangents, rad, in [0, pi/2]
   std::vector<double> crossWeight; // weight of the crossing normal in the blend, in [0, 1]
   std::vector<std::uint8_t> fallback;  // ContactFallback bits
+  std::vector<std::int8_t> forced;     // forced normal (paper section 5.2.1): +1 N = +D (I over
+                                       // J), -1 N = -D, 0 eqs. 10-11; set at generation, kept by
+                                       // loop B (systems/contact_elements.h)
   std::vector<std::uint8_t> crossing;  // 1: a point element placed at the closest points of two
                                        // crossing centrelines; frictionless, its sections follow
                                        // them in Newton (systems/crossing_follow.h)

@@ -515,9 +515,9 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     double xiI[2], xiJ[2];
     std::uint8_t flags = sides.flags;
     const int forced = g.I == g.J ? 0 : forcedSign(p, g.I, sides.sI, g.J, sides.sJ);
+    const Vec3 N = forced * p.forcedNormal;
     if (forced)
-      forcedParticles(I, J, fs.radius[g.I], fs.radius[g.J], forced * p.forcedNormal, xiI, xiJ,
-                      flags);
+      forcedParticles(I, J, fs.radius[g.I], fs.radius[g.J], N, xiI, xiJ, flags);
     else
       particlesWithEndFaces(fs, g, sides, I, J, xiI, xiJ, flags);
     el.zone[e] = z;
@@ -530,7 +530,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.xiJ1[e] = xiJ[0];
     el.xiJ2[e] = xiJ[1];
     const NormalGap ng =
-        forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * p.forcedNormal, p.forcedAllowance)
+        forced ? forcedNormalAndGap(I, J, xiI, xiJ, N, p.forcedAllowance)
                : normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J], p.thetaParallel,
                               p.thetaCross, flags);
     el.normal[e] = ng.normal;
@@ -538,6 +538,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.theta[e] = ng.theta;
     el.crossWeight[e] = ng.crossWeight;
     el.fallback[e] = flags | (ng.fallback ? kFallbackNormal : 0);
+    el.forced[e] = std::int8_t(forced);
     el.crossing[e] = closest && !forced && !(flags & (kEndFaceI | kEndFaceJ));
   }
 }

@@ -3,8 +3,9 @@
 // Reads  FibreStore, the state q (x0, g1, g2), ContactParams, CentrelineStore, ZoneStore
 //        (fibres, intervals), the cancel flag (per chunk of zones).
 // Writes ZoneStore::intermediateLength, firstElement, elementCount; ContactElementStore (zone,
-//        zeta, length, weight, particles, normal, gap, theta, crossWeight (eqs. 10-11, systems/contact_normals.h),
-//        fallback bits; every other column is sized and left to the systems after it).
+//        zeta, length, weight, particles, normal, gap, theta, crossWeight (eqs. 10-11,
+//        systems/contact_normals.h), fallback bits, forced, crossing; every other column is sized
+//        and left to the systems after it).
 // Threading: parallel over zones, twice: lengths, then (after a prefix sum of the counts) the
 //        elements, each zone writing its own range. Independent of the thread count.
 //
@@ -52,6 +53,8 @@
 //     fibres are of different classes with different levels at sI, sJ, N = sign D and the
 //     particles are the outline points facing along N instead (I's towards -N, J's towards +N),
 //     with no end-face rule; centrelines that cross (coincident centres) are no special case.
+//     The sign is decided here, once, and kept in ContactElementStore::forced: loop B, the law
+//     and the acceptance read it there.
 //
 // Degenerate cases (documented in docs/CONTACT.md, flagged in ContactElementStore::fallback):
 //   t_int = 0 (zero-length zone, or cancelling pieces): t_int := bisector of the tangents

@@ -47,7 +47,7 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
           const Section I = contactSection(fs, q, fI, el.sI[e]);
           const Section J = contactSection(fs, q, fJ, el.sJ[e]);
           const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
-          const int forced = forcedSign(params, fI, el.sI[e], fJ, el.sJ[e]);
+          const int forced = el.forced[e];
           const NormalGap ng =
               forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * params.forcedNormal,
                                           params.forcedAllowance)

@@ -48,9 +48,10 @@ inline double levelAt(const ContactParams& p, Index f, double s) {
   return level;
 }
 
-// Orientation of the forced normal of the element between (I, sI) and (J, sJ): +1 (N = +D, I
-// over J) when I's level there is the higher, -1 when J's is, 0 when the normal is not forced
-// (no forced direction in this step, fibres of one class, or equal levels).
+// Orientation the forced normal of an element between (I, sI) and (J, sJ) would have: +1 (N =
+// +D, I over J) when I's level there is the higher, -1 when J's is, 0 when the normal is not
+// forced (no forced direction in this step, fibres of one class, or equal levels). Decided once,
+// at the element's generation (ContactElementStore::forced).
 inline int forcedSign(const ContactParams& p, Index I, double sI, Index J, double sJ) {
   if (p.forcedNormal.squaredNorm() == 0 || p.pairs.classOf[I] == p.pairs.classOf[J]) return 0;
   const double lI = levelAt(p, I, sI), lJ = levelAt(p, J, sJ);
@@ -58,10 +59,10 @@ inline int forcedSign(const ContactParams& p, Index I, double sI, Index J, doubl
 }
 
 // The overlap a forced element's gap allows in the current attempt (ContactParams::
-// forcedAllowance, mm; 0 for an element whose normal is not forced): its gap is
-// D.(x_over - x_under) - (R_over + R_under) + allowance.
-inline double forcedAllowance(const ContactParams& p, Index I, double sI, Index J, double sJ) {
-  return p.forcedAllowance > 0 && forcedSign(p, I, sI, J, sJ) ? p.forcedAllowance : 0.0;
+// forcedAllowance, mm; 0 for an element whose normal is not forced, `forced` its
+// ContactElementStore::forced): its gap is D.(x_over - x_under) - (R_over + R_under) + allowance.
+inline double forcedAllowance(const ContactParams& p, int forced) {
+  return forced ? p.forcedAllowance : 0.0;
 }
 
 }  // namespace fibra

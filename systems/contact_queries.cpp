@@ -113,7 +113,7 @@ Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Contac
       // coincident centres (a full overlap): the width across I's first director
       const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
       depth = halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist -
-              forcedAllowance(params, fI, el.sI[e], fJ, el.sJ[e]);
+              forcedAllowance(params, el.forced[e]);
     }
     deepest.depth = std::max(deepest.depth, depth);
     const double ratio = depth / detected.zones.pMax[el.zone[e]];
@@ -142,7 +142,7 @@ double freshGap(const FibreStore& fs, const ContactParams& p, const ContactEleme
       !facingSide(fs.q, ef.sideJ[b], fs.radius[ef.fibreJ[b]], ef.normal[b], J))
     return ef.gap[b];
   return (I.position - J.position).dot(ef.normal[b]) +
-         forcedAllowance(p, ef.fibreI[b], ef.sI[b], ef.fibreJ[b], ef.sJ[b]);
+         forcedAllowance(p, ef.forced[b]);
 }
 
 }  // namespace

@@ -47,8 +47,7 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
     }
     // a forced element's allowance widens its gap: d shifted along N (a constant of q; N's
     // tangent plane, where the slip lives, is unchanged)
-    const Vec3 widen = forcedAllowance(p, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]) *
-                       el.normal[e];
+    const Vec3 widen = forcedAllowance(p, el.forced[e]) * el.normal[e];
     const Vec3 d =
         particlePosition(fs.q, el.sideI[e]) - particlePosition(fs.q, el.sideJ[e]) + widen;
     FacingSide I, J;

@@ -58,7 +58,7 @@ void setNormal(const FibreStore& fs, const Eigen::VectorXd& q, Index e, const Ve
 std::vector<Index> loopNormalElements(const ContactParams& p, const ContactElementStore& el) {
   std::vector<Index> which;
   for (Index e = 0; e < el.size(); ++e)
-    if (!linearisedNormal(p, el, e) && !forcedSign(p, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]))
+    if (!linearisedNormal(p, el, e) && !el.forced[e])
       which.push_back(e);
   return which;
 }

@@ -54,7 +54,7 @@ inline bool frictionlessParallel(const ContactParams& p, const ContactElementSto
 // only once loop B diverged (unstableNormals): linearisable says which they would be.
 inline bool linearisableNormal(const ContactParams& p, const ContactElementStore& el, Index e) {
   return !(el.fallback[e] & (kEndFaceI | kEndFaceJ)) &&
-         !forcedSign(p, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]) &&
+         !el.forced[e] &&
          (!p.newtonFrictionlessOnly || frictionlessParallel(p, el, e));
 }
 inline bool linearisedNormal(const ContactParams& p, const ContactElementStore& el, Index e) {

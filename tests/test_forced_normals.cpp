@@ -109,6 +109,7 @@ TEST_CASE("centrelines that cut each other keep their contact elements under for
     for (Index e = 0; e < el.size(); ++e) {
       CAPTURE(e);
       REQUIRE(el.fibreI[e] == 0);  // A is I: N = +z when A's level is the higher
+      CHECK(el.forced[e] == int(levelA));  // the sign, kept for loop B and the law
       CHECK((el.normal[e] - levelA * Vec3::UnitZ()).norm() < 1e-15);
       // Both centrelines lie in z = 0: the gap along the forced normal is -(R_I + R_J).
       CHECK(std::abs(el.gap[e] + 2 * R) < 1e-12);
@@ -138,8 +139,10 @@ TEST_CASE("the normal rules come back for equal levels and for fibres of one cla
     detectForced(w, s);
     const ContactElementStore& el = w.trial.elements;
     REQUIRE(el.size() >= 1);
-    for (Index e = 0; e < el.size(); ++e)  // eq. 10: from J (B, above) to I (A): -z
+    for (Index e = 0; e < el.size(); ++e) {  // eq. 10: from J (B, above) to I (A): -z
+      CHECK(el.forced[e] == 0);
       CHECK((el.normal[e] + Vec3::UnitZ()).norm() < 1e-9);
+    }
   }
 }
 
@@ -201,9 +204,13 @@ TEST_CASE("forced normals push two flat interpenetrating yarns apart, the over y
     }
   MESSAGE("closest warp-weft centrelines after the forced step: "
           << smallest << " mm (2R - p_max = " << 2 * R - pMax << ")");
+  Index forcedElements = 0;
+  for (const std::int8_t f : w.contact().elements.forced) forcedElements += f != 0;
+  CHECK(forcedElements > 0);
   const StepReport r = w.step();  // the normal rules
   REQUIRE(r.status == StepStatus::Converged);
   CHECK(w.finished());
+  for (const std::int8_t f : w.contact().elements.forced) CHECK(f == 0);  // its detections' rule
   for (Index I = 0; I < 3; ++I)
     for (Index J = 3; J < 6; ++J) {
       const double xJ = x0Of(fs.qRef, fs.firstNode[J]).x(), yI = x0Of(fs.qRef, fs.firstNode[I]).y();
