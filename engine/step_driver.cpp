@@ -68,6 +68,22 @@ bool nothingPrescribedChanges(const SceneDef& s, const StepDef& st, double a, do
   return true;
 }
 
+// What a step that failed after all its cutbacks can change, with the values it ran with; `size`
+// is its last attempt's increment (t units).
+std::string cutbackAdvice(const StepDef& st, double size) {
+  std::string a = " (the last attempt was an increment of " + number(size) +
+                  "; to go on: more `increments` (now " + std::to_string(st.increments) +
+                  "), a larger `max_iterations` (now " + std::to_string(st.maxIterations) +
+                  ") or `max_cutbacks` (now " + std::to_string(st.maxCutbacks) + "), " +
+                  (st.damping > 0 ? "a larger `damping` (now " + number(st.damping) + ")"
+                                  : std::string("a `damping`"));
+  if (st.forcedNormal.squaredNorm() > 0)
+    a += st.forcedAllowance > 0 ? ", a larger `forced_normals.allowance` (now " +
+                                      number(st.forcedAllowance) + " mm)"
+                                : ", a `forced_normals.allowance`";
+  return a + ")";
+}
+
 // |f on the free DOFs| / F_ref at the converged state, as in Newton's test.
 double relativeFree(const WorldState& w, const Eigen::VectorXd& f) {
   return relativeToReference(w.system, f, w.lengthScale, w.forceFloor);
@@ -356,7 +372,8 @@ StepReport advance(WorldState& w) {
                       ")");
     if (++rep.cutbacks > st.maxCutbacks)
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
-                                          std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message);
+                                          std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message +
+                                          cutbackAdvice(st, tTry - w.time));
     rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
                    number(tTry) + ": " + nr.message;
   }

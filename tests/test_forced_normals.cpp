@@ -268,6 +268,27 @@ TEST_CASE("a forced step's allowance removes the yarns' overlap in equal parts")
   CHECK(w.finished());
 }
 
+TEST_CASE("a step that fails after its cutbacks says what it ran with and what to change") {
+  SceneDef scene = loadScene(FIBRA_SOURCE_DIR "/samples/forced_normals.json");
+  scene.steps[0].forcedAllowance = 0.2;
+  scene.steps[0].maxIterations = 1;
+  scene.steps[0].maxCutbacks = 2;
+  World w(scene);
+  const StepReport r = w.step();
+  REQUIRE(r.status == StepStatus::Failed);
+  CHECK(r.cutbacks == 3);
+  MESSAGE(r.message);
+  // the first increment (0.25 of the step's t = 0 .. 1) cut twice, to a quarter each time (one
+  // iteration that never lowered the residual: engine/step_driver.cpp, nextIncrement)
+  CHECK(r.message.find("failed after 2 cutbacks") != std::string::npos);
+  CHECK(r.message.find("the last attempt was an increment of 0.015625;") != std::string::npos);
+  CHECK(r.message.find("`increments` (now 4)") != std::string::npos);
+  CHECK(r.message.find("`max_iterations` (now 1)") != std::string::npos);
+  CHECK(r.message.find("`max_cutbacks` (now 2)") != std::string::npos);
+  CHECK(r.message.find("a `damping`") != std::string::npos);
+  CHECK(r.message.find("larger `forced_normals.allowance` (now 0.2 mm)") != std::string::npos);
+}
+
 TEST_CASE("a forced step without an allowance fails at once, with one it cuts back") {
   // Too few iterations for the first increment: without an allowance nothing changes with t,
   // so a smaller increment would repeat the attempt (the message says what to give); with one,
