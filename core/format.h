@@ -13,4 +13,10 @@ inline std::string number(double v) {
   return s;
 }
 
+// A count with its noun, singular for one: counted(1, "cutback") is "1 cutback", counted(3, …)
+// "3 cutbacks".
+inline std::string counted(long n, const char* noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
 }  // namespace fibra

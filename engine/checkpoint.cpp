@@ -39,7 +39,7 @@ namespace fibra {
 namespace {
 
 constexpr char kMagic[] = "fibra-checkpoint\n";
-constexpr std::uint32_t kFormat = 3;  // 3: the contact forces' friction blocks on facing particles
+constexpr std::uint32_t kFormat = 4;  // 3: the friction blocks on facing particles; 4: the forced signs
 
 template <class T>
 struct IsArray : std::false_type {};

@@ -68,20 +68,24 @@ bool nothingPrescribedChanges(const SceneDef& s, const StepDef& st, double a, do
   return true;
 }
 
-// What a step that failed after all its cutbacks can change, with the values it ran with; `size`
-// is its last attempt's increment (t units).
-std::string cutbackAdvice(const StepDef& st, double size) {
-  std::string a = " (the last attempt was an increment of " + number(size) +
-                  "; to go on: more `increments` (now " + std::to_string(st.increments) +
-                  "), a larger `max_iterations` (now " + std::to_string(st.maxIterations) +
-                  ") or `max_cutbacks` (now " + std::to_string(st.maxCutbacks) + "), " +
-                  (st.damping > 0 ? "a larger `damping` (now " + number(st.damping) + ")"
-                                  : std::string("a `damping`"));
+// What a step that failed after all its cutbacks can change, with the values it ran with, split
+// into what a `--resume` takes and what needs a fresh run (engine/checkpoint.cpp's fingerprint
+// refuses the rest); `size` is its last attempt's increment (t units).
+std::string cutbackAdvice(const SceneDef& scene, const StepDef& st, double size) {
+  bool damped = false;  // a resume takes a new damping only where some step has one
+  for (const StepDef& s : scene.steps) damped = damped || s.damping > 0;
+  const std::string damping = st.damping > 0 ? "a larger `damping` (now " + number(st.damping) + ")"
+                                             : std::string("a `damping`");
+  std::string resume = "a larger `max_iterations` (now " + std::to_string(st.maxIterations) +
+                       ") or `max_cutbacks` (now " + std::to_string(st.maxCutbacks) + ")";
+  std::string fresh = "more `increments` (now " + std::to_string(st.increments) + ")";
+  (damped ? resume : fresh) += ", " + damping;
   if (st.forcedNormal.squaredNorm() > 0)
-    a += st.forcedAllowance > 0 ? ", a larger `forced_normals.allowance` (now " +
-                                      number(st.forcedAllowance) + " mm)"
-                                : ", a `forced_normals.allowance`";
-  return a + ")";
+    fresh += st.forcedAllowance > 0 ? ", a larger `forced_normals.allowance` (now " +
+                                          number(st.forcedAllowance) + " mm)"
+                                    : ", a `forced_normals.allowance`";
+  return " (the last attempt was an increment of " + number(size) + "; to go on, with `--resume`: " +
+         resume + "; in a fresh run, also: " + fresh + ")";
 }
 
 // |f on the free DOFs| / F_ref at the converged state, as in Newton's test.
@@ -372,8 +376,8 @@ StepReport advance(WorldState& w) {
                       ")");
     if (++rep.cutbacks > st.maxCutbacks)
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
-                                          std::to_string(st.maxCutbacks) + " cutbacks: " + nr.message +
-                                          cutbackAdvice(st, tTry - w.time));
+                                          counted(st.maxCutbacks, "cutback") + ": " + nr.message +
+                                          cutbackAdvice(w.scene, st, tTry - w.time));
     rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
                    number(tTry) + ": " + nr.message;
   }

@@ -2,9 +2,9 @@
 // the current state, for fixed particles and normals (paper section 4).
 //
 // Reads  FibreStore (q), ContactParams (p_reg / p_max, g_T,max, symmetrised; the forced
-//        normals' classes, levels and allowance: a forced element's d is shifted by a N), ZoneStore
+//        normals' direction and allowance: a forced element's d is shifted by a N), ZoneStore
 //        (penalty, p_max and mu per zone: its pair class's), ContactElementStore (particle
-//        weights, element weight w_e, normal, friction reference).
+//        weights, element weight w_e, normal, friction reference, forced sign).
 //        IterationInput (with or without the tangent).
 // Writes ContactForceStore (gap, R_N, force, stiffness, g_rev, slip per element; facing
 //        particles, rolling weights and friction blocks of elements on facing particles),

@@ -245,8 +245,8 @@ NewtonResult solveNewton(Eigen::VectorXd& q, LinearSystem& ls, LinearSolver& sol
       return res;
     }
   }
-  res.message = "no convergence in " + std::to_string(settings.maxIterations) +
-                " iterations (residual " + number(res.residual) + ")";
+  res.message = "no convergence in " + counted(settings.maxIterations, "iteration") +
+                " (residual " + number(res.residual) + ")";
   return res;
 }
 

@@ -27,7 +27,7 @@
 // t = 0.425 to 0.7 and fails there, because each increment's first detection is a plain step.
 //
 // Reads  FibreStore, the state q, ContactParams (forced normals, normal update), the particles
-//        and normals of ContactElementStore.
+//        normals and forced signs of ContactElementStore (a forced element keeps N = +-D).
 // Writes ContactElementStore::normal (the mixed normals, each renormalised), gap (gN = (xI - xJ).N
 //        at q, mm) and gRev0 (projected on the new tangent plane, mm) of the loop's elements.
 // Threading: parallel over elements, each writing its own entries (the mixing itself is serial,

@@ -5,7 +5,8 @@
 // point on N, amplifies a lateral perturbation of a cylinder lying on a cylinder: docs/CONTACT.md).
 //
 // Reads  the state q (FibreStore), the element's particles (weights) and sections (fibre, s),
-//        its law parameters and friction reference (d0, g_rev,0).
+//        its law parameters, friction reference (d0, g_rev,0) and forced sign (a forced normal
+//        is fixed, not linearised).
 // Writes one element's ContactLawResult (gap, R_N, f, g_rev, slip; stiffness = -df/dx^I at
 //        fixed N, for reports) and its NormalJacobian (df/dv and the sections' weights).
 //

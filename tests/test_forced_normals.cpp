@@ -287,6 +287,26 @@ TEST_CASE("a step that fails after its cutbacks says what it ran with and what t
   CHECK(r.message.find("`max_cutbacks` (now 2)") != std::string::npos);
   CHECK(r.message.find("a `damping`") != std::string::npos);
   CHECK(r.message.find("larger `forced_normals.allowance` (now 0.2 mm)") != std::string::npos);
+  CHECK(r.message.find("no convergence in 1 iteration ") != std::string::npos);
+  // What a resume takes (the checkpoint's fingerprint refuses the rest) comes first: no step
+  // has damping, so a damping needs a fresh run, as the increments and the allowance do.
+  const std::size_t resume = r.message.find("with `--resume`: a larger `max_iterations`");
+  const std::size_t fresh = r.message.find("in a fresh run, also: more `increments`");
+  REQUIRE(resume != std::string::npos);
+  REQUIRE(fresh != std::string::npos);
+  CHECK(resume < fresh);
+  CHECK(r.message.find("a `damping`") > fresh);
+  CHECK(r.message.find("`forced_normals.allowance`") > fresh);
+
+  // With a damped step a resume takes a new damping too.
+  scene.steps[0].damping = 1e-3;
+  World damped(scene);
+  const StepReport d = damped.step();
+  REQUIRE(d.status == StepStatus::Failed);
+  MESSAGE(d.message);
+  const std::size_t larger = d.message.find("a larger `damping` (now 0.001)");
+  REQUIRE(larger != std::string::npos);
+  CHECK(larger < d.message.find("in a fresh run, also:"));
 }
 
 TEST_CASE("a forced step without an allowance fails at once, with one it cuts back") {
