@@ -169,8 +169,7 @@ std::uint64_t fingerprint(const WorldState& w) {
   SceneDef s = w.scene;
   // Whether some step has damping sets the history's columns (viscous_force): a damping may
   // change, not come or go.
-  bool damped = false;
-  for (const StepDef& st : s.steps) damped = damped || st.damping > 0;
+  const bool damped = anyStepDamped(s);
   for (StepDef& st : s.steps) {
     const StepDef d;
     st.name = d.name, st.maxIterations = d.maxIterations, st.maxCutbacks = d.maxCutbacks;

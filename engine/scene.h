@@ -306,4 +306,12 @@ struct SceneDef {
   OutputDef output;
 };
 
+// Whether some step of the scene has `damping` (the viscous continuation): the stabilisation
+// store is active and a resume may change the damping only then.
+inline bool anyStepDamped(const SceneDef& s) {
+  for (const StepDef& st : s.steps)
+    if (st.damping > 0) return true;
+  return false;
+}
+
 }  // namespace fibra

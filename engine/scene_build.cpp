@@ -175,8 +175,7 @@ void buildStabilisation(WorldState& w) {
     if (!listed) continue;
     for (Index n = 0; n < w.fibres.nodeCount[f]; ++n) s.stiffness[w.fibres.firstNode[f] + n] = st.stiffness;
   }
-  s.active = st.stiffness > 0 || std::any_of(w.scene.steps.begin(), w.scene.steps.end(),
-                                              [](const StepDef& d) { return d.damping > 0; });
+  s.active = st.stiffness > 0 || anyStepDamped(w.scene);
   s.qStart = w.fibres.q;
 }
 

@@ -72,8 +72,7 @@ bool nothingPrescribedChanges(const SceneDef& s, const StepDef& st, double a, do
 // into what a `--resume` takes and what needs a fresh run (engine/checkpoint.cpp's fingerprint
 // refuses the rest); `size` is its last attempt's increment (t units).
 std::string cutbackAdvice(const SceneDef& scene, const StepDef& st, double size) {
-  bool damped = false;  // a resume takes a new damping only where some step has one
-  for (const StepDef& s : scene.steps) damped = damped || s.damping > 0;
+  const bool damped = anyStepDamped(scene);  // a resume takes a new damping only then
   const std::string damping = st.damping > 0 ? "a larger `damping` (now " + number(st.damping) + ")"
                                              : std::string("a `damping`");
   std::string resume = "a larger `max_iterations` (now " + std::to_string(st.maxIterations) +
