@@ -254,6 +254,7 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
   const SceneDef& scene = world.scene();
   const auto start = std::chrono::steady_clock::now();
   int increments = 0, iterations = 0, cutbacks = 0;
+  terminal::Explained explained;
   const auto summary = [&](const char* what) {
     std::fprintf(stderr,
                  "fibra: %s: t = %g, %d increments, %d Newton iterations, %d cutbacks, %.3g s; "
@@ -267,7 +268,7 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
       ++increments;
       iterations += r.totalIterations;
       cutbacks += r.cutbacks;
-      terminal::printIncrement(r, scene, verbosity);
+      terminal::printIncrement(r, scene, verbosity, explained);
       outputs.increment(world, r);
       continue;
     }

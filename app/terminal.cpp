@@ -1,5 +1,7 @@
 #include "app/terminal.h"
 
+#include "core/format.h"
+
 #include "engine/contact_setup.h"
 #include "engine/free_spin.h"
 #include "engine/torqued_strings.h"
@@ -290,21 +292,21 @@ void printIteration(const Progress& p) {
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
-void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
+void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Explained& explained) {
   if (v == Verbosity::Quiet) return;
   const StepDef& st = scene.steps[r.step];
-  std::string line = format("step %d/%zu  increment %d/%d  t = %-8.6g %2d iterations  "
+  std::string line = format("step %d/%zu  increment %d/%d  t = %-8.6g %2d iteration%s  "
                             "residual %.2e",
                             r.step + 1, scene.steps.size(), r.increment, st.increments, r.time,
-                            r.iterations, r.residual);
-  if (r.cutbacks > 0) line += format("  %d cutbacks", r.cutbacks);
-  if (r.dampedSteps > 0) line += format("  %d damped steps", r.dampedSteps);
+                            r.iterations, r.iterations == 1 ? "" : "s", r.residual);
+  if (r.cutbacks > 0) line += "  " + counted(r.cutbacks, "cutback");
+  if (r.dampedSteps > 0) line += "  " + counted(r.dampedSteps, "damped step");
   const bool contact = scene.contact.enabled || !scene.tools.empty();
   const ContactReport& c = r.contact;
   if (contact)
     line += format("  contact %d+%d (%d sliding), penetration %.2f p_max", c.elements,
                    c.toolElements, c.sliding, c.maxPenetrationRatio);
-  if (contact && c.restarts > 0) line += format("  %d loop restarts", c.restarts);
+  if (contact && c.restarts > 0) line += "  " + counted(c.restarts, "loop restart");
   if (contact && c.loopCapped) line += "  loop A capped";
   std::fprintf(stderr, "%s  %.3g s\n", line.c_str(), r.timings.total);
   if (r.cutbacks > 0) std::fprintf(stderr, "  cutback: %s\n", r.message.c_str());
@@ -313,6 +315,15 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v) {
                  "  note: %d more pass(es) with a new detection at acceptance: the fibres "
                  "overlapped deeper than the contact elements reported (contact.max_overlap)\n",
                  c.consistencyPasses);
+  if (contact && c.loopCapped && !explained.loopCapped) {
+    explained.loopCapped = true;
+    std::fprintf(stderr,
+                 "  note: loop A capped: the increment's last pass was solved with the elements of "
+                 "its detection %d (contact.max_detection_loops) and the fibres still moved, or a "
+                 "penalty still changed, after it; contact.loop_a_capped and contact.redetect_* "
+                 "in the history say how far a fresh detection would differ (said once)\n",
+                 scene.contact.maxDetectionLoops);
+  }
   if (contact && c.normalRestarts > 0)
     std::fprintf(stderr,
                  "  note: loop B's normal updates diverged: the increment restarted with the "

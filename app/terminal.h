@@ -22,7 +22,12 @@ std::string describeProblem(const World& world, const std::string& scene, int th
 // --quiet, which prints no description.
 std::string toolStartWarnings(const World& world);
 
+// What a run's terminal has explained once already (a mark that recurs gets its note once).
+struct Explained {
+  bool loopCapped = false;  // "loop A capped"
+};
+
 void printIteration(const Progress& p);
-void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v);
+void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Explained& explained);
 
 }  // namespace fibra::terminal

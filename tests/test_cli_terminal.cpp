@@ -332,3 +332,24 @@ TEST_CASE("fibra run refuses repeated or conflicting options and an unwritable t
   CHECK(trace.output.find("solved") == std::string::npos);  // refused before the run
   CHECK_FALSE(fs::exists(out));
 }
+
+TEST_CASE("fibra run explains a capped loop A once and counts in the singular for one") {
+  // The forced-normals sample with one detection per increment: its pass solves with the elements
+  // of the increment's first detection while the yarns still move, in increments 1 and 5.
+  TempDir scratch("cli_capped");
+  fs::create_directories(scratch.path());
+  nlohmann::json j = nlohmann::json::parse(readFile(sourcePath("samples/forced_normals.json")),
+                                           nullptr, true, true);
+  j["contact"]["max_detection_loops"] = 1;
+  writeFile(scratch / "capped.json", j.dump());
+  const RunResult r = runFibra({"run", scratch / "capped.json", "--out", scratch / "out"}, scratch);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(countLines(r.output, R"(^step .*  loop A capped  )") >= 2);
+  CHECK(countLines(r.output, R"(^  note: loop A capped: .* of its detection 1 )"
+                             R"(\(contact.max_detection_loops\))") == 1);
+  // "1 iteration", never "1 iterations"; and the plural elsewhere.
+  CHECK(countLines(r.output, R"(^step .* t = \S+ +1 iteration  residual)") >= 1);
+  CHECK(countLines(r.output, R"( 1 iterations )") == 0);
+  CHECK(countLines(r.output, R"(^step .* t = \S+ +[2-9] iterations  residual)") >= 1);
+}
