@@ -95,17 +95,42 @@ std::string pairLines(const SceneDef& s, const ContactClasses& c) {
   return out;
 }
 
-// The steps whose contact normals are forced.
-std::string forcedLines(const SceneDef& s) {
+// The fibres' height along the unit direction d at the current state: the spread of the nodal
+// centres along d plus twice the largest radius (mm), a bound on any pair's overlap along d.
+double heightAlong(const FibreStore& fs, const Vec3& d) {
+  double lo = INFINITY, hi = -INFINITY, r = 0;
+  for (Index n = 0; n < fs.nodes(); ++n) {
+    const double h = d.dot(Vec3(fs.q.segment<3>(kNodeDofs * n)));
+    lo = std::min(lo, h), hi = std::max(hi, h);
+  }
+  for (double ri : fs.radius) r = std::max(r, ri);
+  return fs.nodes() > 0 ? hi - lo + 2 * r : 0;
+}
+
+// The steps whose contact normals are forced; a warning where the first step's allowance A
+// exceeds the fibres' height H along the direction at the scene's start (no pair can overlap by
+// that much, so the step's first floor(n (A - H) / A) increments have nothing to do).
+std::string forcedLines(const World& world) {
+  const SceneDef& s = world.scene();
   std::string out;
   for (size_t i = 0; i < s.steps.size(); ++i) {
     const Vec3& d = s.steps[i].forcedNormal;
     const double a = s.steps[i].forcedAllowance;
-    if (d.squaredNorm() > 0)
-      out += format("  forced normals: step %zu%s along [%g, %g, %g]%s\n", i + 1,
-                    s.steps[i].name.empty() ? "" : (" (" + s.steps[i].name + ")").c_str(), d.x(),
-                    d.y(), d.z(),
-                    a > 0 ? format(", allowance %g mm released over the step", a).c_str() : "");
+    if (d.squaredNorm() == 0) continue;
+    out += format("  forced normals: step %zu%s along [%g, %g, %g]%s\n", i + 1,
+                  s.steps[i].name.empty() ? "" : (" (" + s.steps[i].name + ")").c_str(), d.x(),
+                  d.y(), d.z(),
+                  a > 0 ? format(", allowance %g mm released over the step", a).c_str() : "");
+    // Increments whose end allowance A (1 - k / n) is still >= H push nothing out.
+    const double h = heightAlong(world.fibres(), d.normalized());
+    const int n = s.steps[i].increments;
+    const int idle = a > h ? int(std::floor(n * (a - h) / a)) : 0;
+    if (i == 0 && world.time() == 0 && idle > 0)
+      out += format("    warning: the allowance %g mm exceeds the fibres' whole height along the "
+                    "direction at the start, %.3g mm (their centres' spread and 2 R): no overlap "
+                    "can be that deep, and the first %s of the step's %d have nothing to do "
+                    "(give about the deepest overlap of the start)\n",
+                    a, h, counted(idle, "increment").c_str(), n);
   }
   return out;
 }
@@ -174,7 +199,7 @@ std::string contactLines(const World& world) {
                   c.facingParticles ? ", frictionless forces on facing particles"
                                     : ", frictionless forces on material particles (the paper's)");
   out += lawLine(c);
-  if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(s);
+  if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(world);
   if (c.tools) out += toolLines(world);
   return out;
 }

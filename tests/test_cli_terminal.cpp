@@ -204,6 +204,18 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   CHECK(c.output.find("initial penalty 100 N/mm, ") != std::string::npos);
   CHECK(c.output.find("  forced normals: step 1 (initial_geometry) along [0, 0, 1], allowance 0.2 "
                       "mm released over the step\n") != std::string::npos);
+  // 0.2 mm is the flat yarns' whole height along z (2R, their centres in z = 0): no warning.
+  CHECK(c.output.find("warning: the allowance") == std::string::npos);
+  // 1 mm leaves the first 3 of the 4 increments (allowances 0.75, 0.5, 0.25 mm) with nothing to
+  // push out.
+  j["steps"][0]["forced_normals"]["allowance"] = 1.0;
+  writeFile(scratch / "huge.json", j.dump());
+  const RunResult huge = runFibra({"check", scratch / "huge.json"}, scratch);
+  REQUIRE(huge.status == 0);
+  CHECK(huge.output.find("    warning: the allowance 1 mm exceeds the fibres' whole height along "
+                         "the direction at the start, 0.2 mm (their centres' spread and 2 R): no "
+                         "overlap can be that deep, and the first 3 increments of the step's 4 "
+                         "have nothing to do") != std::string::npos);
   CHECK(c.output.find(", loops A <= 3, B <= 3, crossings follow the closest points, frictionless "
                       "forces on material particles (the paper's)\n") != std::string::npos);
   CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, on K's "
