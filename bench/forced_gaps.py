@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""Forced gaps of a run's state, independent of the contact elements (docs/SCENE.md "Forced
+normals"): for every pair of fibres of different classes whose levels differ, the closest points
+of their two centrelines (sampled at --samples points per quadratic element, brute force), the
+fibre with the higher level there on top, and the gap along the forced direction D that the
+forced law would give at those points:
+
+    g = (x_top - x_bottom) . D - (R_top + R_bottom) + A
+
+(mm, A the allowance left at the state's time). Prints the deepest gaps (most negative first)
+with the centrelines' distance d there, and counts the pairs with g < 0 whose d exceeds --reach
+(the proximity distance): pairs that the forced law would push apart but that detection, which
+looks only within Δprox, does not see.
+
+  fibra expand bench/woven_thick_7.json --out /tmp/thick.json
+  python3 bench/forced_gaps.py OUT/final_state.csv /tmp/thick.json --allowance 0.0890 \\
+      --reach 0.078
+"""
+import argparse
+import csv
+import json
+import math
+import sys
+from collections import defaultdict
+
+
+def fail(msg):
+    sys.exit("forced_gaps.py: " + msg)
+
+
+def load_state(path):
+    """{fibre: [(x, y, z) per node]} from a final_state.csv."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.DictReader(f))
+    except OSError as e:
+        fail(f"{path}: {e.strerror}")
+    if not rows or any(c not in rows[0] for c in ("fibre", "x", "y", "z")):
+        fail(f"{path}: not a final_state.csv (columns fibre, x, y, z)")
+    nodes = defaultdict(list)
+    for r in rows:
+        nodes[r["fibre"]].append((float(r["x"]), float(r["y"]), float(r["z"])))
+    return nodes
+
+
+def samples(p, m):
+    """Points along a fibre of quadratic elements (2 n + 1 nodes), m per element, with the
+    fraction of the arc length at each (equal reference element lengths)."""
+    if len(p) % 2 == 0:
+        fail("a fibre with an even node count: these scripts take quadratic elements")
+    out, n = [], (len(p) - 1) // 2
+    for e in range(n):
+        a, b, c = p[2 * e], p[2 * e + 1], p[2 * e + 2]
+        for k in range(m):
+            t = k / m
+            w = ((1 - t) * (1 - 2 * t), 4 * t * (1 - t), t * (2 * t - 1))
+            out.append((tuple(w[0] * a[q] + w[1] * b[q] + w[2] * c[q] for q in range(3)),
+                        (e + t) / n))
+    out.append((p[-1], 1.0))
+    return out
+
+
+def level_at(levels, s):
+    if not isinstance(levels, list):
+        return float(levels)
+    value = levels[0][1]
+    for start, lv in levels:
+        if s >= start:
+            value = lv
+    return float(value)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("state", help="final_state.csv of a run")
+    ap.add_argument("scene", help="the scene expanded to plain JSON (fibra expand)")
+    ap.add_argument("--allowance", type=float, default=0.0, help="A left at the state, mm")
+    ap.add_argument("--direction", default="0,0,1", help="forced direction D, x,y,z")
+    ap.add_argument("--reach", type=float, required=True, help="proximity distance, mm")
+    ap.add_argument("--samples", type=int, default=8, help="points per element")
+    ap.add_argument("--show", type=int, default=8, help="pairs printed")
+    a = ap.parse_args()
+    d = [float(v) for v in a.direction.split(",")]
+    norm = math.sqrt(sum(v * v for v in d))
+    if len(d) != 3 or norm == 0:
+        fail("--direction: three numbers, not all zero")
+    d = [v / norm for v in d]
+    try:
+        fibres = {f["name"]: f for f in json.load(open(a.scene))["fibres"]}
+    except (OSError, ValueError, KeyError) as e:
+        fail(f"{a.scene}: not an expanded scene with fibres ({e})")
+    state = load_state(a.state)
+    pts = {name: samples(p, a.samples) for name, p in state.items()}
+    names = sorted(n for n in pts if n in fibres)
+    pairs = []
+    for i, ni in enumerate(names):
+        for nj in names[i + 1:]:
+            fi, fj = fibres[ni], fibres[nj]
+            if fi.get("class", "") == fj.get("class", ""):
+                continue
+            best = (math.inf, None, None)
+            for pi, si in pts[ni]:
+                for pj, sj in pts[nj]:
+                    dd = sum((pi[q] - pj[q]) ** 2 for q in range(3))
+                    if dd < best[0]:
+                        best = (dd, (pi, si), (pj, sj))
+            (pi, si), (pj, sj) = best[1], best[2]
+            li = level_at(fi.get("levels", 0), si * fi_length(fi))
+            lj = level_at(fj.get("levels", 0), sj * fi_length(fj))
+            if li == lj:
+                continue
+            top, bottom = (pi, pj) if li > lj else (pj, pi)
+            along = sum((top[q] - bottom[q]) * d[q] for q in range(3))
+            gap = along - fi["radius"] - fj["radius"] + a.allowance
+            pairs.append((gap, math.sqrt(best[0]), ni, si, nj, sj))
+    pairs.sort()
+    unseen = [p for p in pairs if p[0] < 0 and p[1] > a.reach]
+    print(f"{len(pairs)} forced pairs, {sum(p[0] < 0 for p in pairs)} with a negative gap, "
+          f"{len(unseen)} of them beyond the reach {a.reach} mm")
+    for gap, dist, ni, si, nj, sj in pairs[:a.show]:
+        print(f"  gap {gap:.6f} mm  d {dist:.5f} mm  {ni} at {si:.3f} L, {nj} at {sj:.3f} L"
+              + ("  beyond the reach" if dist > a.reach else ""))
+
+
+def fi_length(f):
+    """Reference arc length of a fibre of line geometry (the generators' fibres), mm."""
+    g = f.get("geometry", {})
+    if g.get("type") != "line":
+        fail(f"fibre '{f['name']}': only line geometries are read (levels are by arc length)")
+    p, q = g["points"]
+    return math.dist(p, q)
+
+
+if __name__ == "__main__":
+    main()
