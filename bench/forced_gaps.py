@@ -7,7 +7,9 @@ forced law would give at those points:
 
     g = (x_top - x_bottom) . D - (R_top + R_bottom) + A
 
-(mm, A the allowance left at the state's time). Prints the deepest gaps (most negative first)
+(mm, A the allowance left at the state's time, R the reference radii: the solver's half-widths
+of the deformed sections differ by the sections' strain, 1.7e-5 mm on samples/forced_normals.json
+after its forced step). Prints the deepest gaps (most negative first)
 with the centrelines' distance d there, and counts the pairs with g < 0 whose d exceeds --reach
 (the proximity distance): pairs that the forced law would push apart but that detection, which
 looks only within Δprox, does not see.
