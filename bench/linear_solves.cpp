@@ -132,7 +132,11 @@ void newton(const Options& o) {
       for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
       w.def.threads = threads;
       LinearStrategy s;
-      if (!parseStrategy(name, s)) std::exit(2);
+      if (!parseStrategy(name, s)) {
+        std::fprintf(stderr, "--newton-strategy %s: not a Newton strategy (auto, direct, umfpack, "
+                     "krylov, krylov-lu, mumps, schwarz)\n", name.c_str());
+        std::exit(2);
+      }
       w.def.linearStrategy = s;
       auto last = std::chrono::steady_clock::now();
       w.def.progress = [&](const Progress& p) {  // one line per Newton iteration

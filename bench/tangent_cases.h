@@ -220,7 +220,12 @@ inline std::unique_ptr<WorldState> warmWorld(
   w->scene = sceneOf(c, 5);
   w->def.threads = threads;
   LinearStrategy s;
-  if (!parseStrategy(c.warmStrategy, s)) std::exit(2);
+  if (!parseStrategy(c.warmStrategy, s)) {
+    std::fprintf(stderr, "--warm-strategy %s: not a Newton strategy (auto, direct, umfpack, "
+                 "krylov, krylov-lu, mumps, schwarz; the bench's variants such as mumps-blr1e-8 "
+                 "are strategies to measure, not to warm up with)\n", c.warmStrategy.c_str());
+    std::exit(2);
+  }
   w->def.linearStrategy = s;
   if (onIteration)
     w->def.progress = [&ws = *w, onIteration](const Progress&) { onIteration(ws.system); };
