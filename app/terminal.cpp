@@ -95,22 +95,50 @@ std::string pairLines(const SceneDef& s, const ContactClasses& c) {
   return out;
 }
 
-// The fibres' height along the unit direction d at the current state: the spread of the nodal
-// centres along d plus twice the largest radius (mm), a bound on any pair's overlap along d.
-double heightAlong(const FibreStore& fs, const Vec3& d) {
-  double lo = INFINITY, hi = -INFINITY, r = 0;
+// The spread of the fibres' nodal centres along the unit direction d at the current state, mm.
+double spreadAlong(const FibreStore& fs, const Vec3& d) {
+  double lo = INFINITY, hi = -INFINITY;
   for (Index n = 0; n < fs.nodes(); ++n) {
     const double h = d.dot(Vec3(fs.q.segment<3>(kNodeDofs * n)));
     lo = std::min(lo, h), hi = std::max(hi, h);
   }
-  for (double ri : fs.radius) r = std::max(r, ri);
-  return fs.nodes() > 0 ? hi - lo + 2 * r : 0;
+  return fs.nodes() > 0 ? hi - lo : 0;
 }
 
-// The steps whose contact normals are forced; a warning where the first step's allowance A
-// exceeds the fibres' height H along the direction at the scene's start (no pair can overlap by
-// that much, so the step's first floor(n (A - H) / A) increments have nothing to do).
-std::string forcedLines(const World& world) {
+// Warnings on the first step's forced normals at the scene's start (S the centres' spread along
+// D, H = S + 2 max R the fibres' height, a bound on any pair's overlap along D):
+// - an allowance A > H leaves the first floor(n (A - H) / A) of n increments nothing to push out;
+// - S beyond the proximity distance: a pair in the wrong order further apart than Delta_prox is
+//   not detected until it comes within it, at a penetration of up to 2R + Delta_prox - A at once
+//   (docs/RESULTS.md "Forced normals with an allowance: thick yarns").
+std::string forcedStartWarnings(const World& world, const ContactParams& c, const StepDef& st) {
+  const FibreStore& fs = world.fibres();
+  const double spread = spreadAlong(fs, st.forcedNormal.normalized());
+  double r = 0, prox = 0;
+  for (Index f = 0; f < fs.fibres(); ++f)
+    r = std::max(r, fs.radius[f]), prox = std::max(prox, 2 * c.reach[f]);
+  const double a = st.forcedAllowance, h = spread + 2 * r;
+  const int n = st.increments;
+  const int idle = a > h ? int(std::floor(n * (a - h) / a)) : 0;
+  std::string out;
+  if (idle > 0)
+    out += format("    warning: the allowance %g mm exceeds the fibres' whole height along the "
+                  "direction at the start, %.3g mm (their centres' spread and 2 R): no overlap "
+                  "can be that deep, and the first %s of the step's %d have nothing to do "
+                  "(give about the deepest overlap of the start)\n",
+                  a, h, counted(idle, "increment").c_str(), n);
+  if (spread > prox)
+    out += format("    warning: the fibres' centres spread %.3g mm along the direction, more than "
+                  "the proximity distance %.3g mm: a pair in the wrong order further apart is "
+                  "not detected until it comes within it, and then at up to 2 R + %.3g mm of "
+                  "penetration at once, less the allowance left; a `proximity_distance` of at "
+                  "least %.3g mm sees every pair from the start\n",
+                  spread, prox, prox, spread);
+  return out;
+}
+
+// The steps whose contact normals are forced, and the first step's warnings at the start.
+std::string forcedLines(const World& world, const ContactParams& c) {
   const SceneDef& s = world.scene();
   std::string out;
   for (size_t i = 0; i < s.steps.size(); ++i) {
@@ -121,16 +149,7 @@ std::string forcedLines(const World& world) {
                   s.steps[i].name.empty() ? "" : (" (" + s.steps[i].name + ")").c_str(), d.x(),
                   d.y(), d.z(),
                   a > 0 ? format(", allowance %g mm released over the step", a).c_str() : "");
-    // Increments whose end allowance A (1 - k / n) is still >= H push nothing out.
-    const double h = heightAlong(world.fibres(), d.normalized());
-    const int n = s.steps[i].increments;
-    const int idle = a > h ? int(std::floor(n * (a - h) / a)) : 0;
-    if (i == 0 && world.time() == 0 && idle > 0)
-      out += format("    warning: the allowance %g mm exceeds the fibres' whole height along the "
-                    "direction at the start, %.3g mm (their centres' spread and 2 R): no overlap "
-                    "can be that deep, and the first %s of the step's %d have nothing to do "
-                    "(give about the deepest overlap of the start)\n",
-                    a, h, counted(idle, "increment").c_str(), n);
+    if (i == 0 && world.time() == 0) out += forcedStartWarnings(world, c, s.steps[i]);
   }
   return out;
 }
@@ -199,7 +218,7 @@ std::string contactLines(const World& world) {
                   c.facingParticles ? ", frictionless forces on facing particles"
                                     : ", frictionless forces on material particles (the paper's)");
   out += lawLine(c);
-  if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(world);
+  if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(world, c);
   if (c.tools) out += toolLines(world);
   return out;
 }

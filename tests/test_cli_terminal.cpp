@@ -216,6 +216,20 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
                          "the direction at the start, 0.2 mm (their centres' spread and 2 R): no "
                          "overlap can be that deep, and the first 3 increments of the step's 4 "
                          "have nothing to do") != std::string::npos);
+  CHECK(huge.output.find("centres spread") == std::string::npos);  // every centre in z = 0
+  // The thick yarns' bench scene: centres spread 2 x 0.0468 = 0.0935 mm along z (three rows of
+  // the hexagonal section), beyond Delta_prox = 3R = 0.078 mm; with 0.1 mm given, no warning.
+  const std::string thick = sourcePath("bench/woven_thick_7.json");
+  const RunResult t = runFibra({"check", thick}, scratch);
+  REQUIRE(t.status == 0);
+  CHECK(countLines(t.output, R"(^    warning: the fibres' centres spread 0\.0935 mm along the )"
+                             R"(direction, more than the proximity distance 0\.078 mm: .* a )"
+                             R"(`proximity_distance` of at least 0\.0935 mm sees every pair)") == 1);
+  nlohmann::json wide = nlohmann::json::parse(readFile(thick), nullptr, true, true);
+  wide["contact"]["proximity_distance"] = 0.1;
+  writeFile(scratch / "wide.json", wide.dump());
+  CHECK(runFibra({"check", scratch / "wide.json"}, scratch).output.find("warning") ==
+        std::string::npos);
   CHECK(c.output.find(", loops A <= 3, B <= 3, crossings follow the closest points, frictionless "
                       "forces on material particles (the paper's)\n") != std::string::npos);
   CHECK(c.output.find("  linear solver: mumps, ordering metis, block low-rank 1e-06, on K's "
