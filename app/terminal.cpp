@@ -1,7 +1,6 @@
 #include "app/terminal.h"
 
 #include "core/format.h"
-
 #include "engine/contact_setup.h"
 #include "engine/free_spin.h"
 #include "engine/torqued_strings.h"
