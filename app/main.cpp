@@ -34,6 +34,7 @@
 #include "app/study.h"
 #include "app/terminal.h"
 #include "core/allocator.h"
+#include "core/format.h"
 #include "engine/world.h"
 #include "fibra/version.h"
 #include "io/output_file.h"
@@ -257,10 +258,11 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
   terminal::Explained explained;
   const auto summary = [&](const char* what) {
     std::fprintf(stderr,
-                 "fibra: %s: t = %g, %d increments, %d Newton iterations, %d cutbacks, %.3g s; "
-                 "%d frames, history and final state in %s\n",
-                 what, world.time(), increments, iterations, cutbacks, secondsSince(start),
-                 outputs.frames(), outputs.dir().c_str());
+                 "fibra: %s: t = %g, %s, %s, %s, %.3g s; %s, history and final state in %s\n",
+                 what, world.time(), counted(increments, "increment").c_str(),
+                 counted(iterations, "Newton iteration").c_str(),
+                 counted(cutbacks, "cutback").c_str(), secondsSince(start),
+                 counted(outputs.frames(), "frame").c_str(), outputs.dir().c_str());
   };
   while (!world.finished()) {
     const StepReport r = world.step();
@@ -394,7 +396,7 @@ int run(const Options& o) {
       std::fprintf(stderr, "fibra: resuming %s at t = %g (step %d of %d)\n", o.out.c_str(),
                    world->time(), std::min(world->currentStep() + 1, steps), steps);
   } else {
-    std::fputs(terminal::toolStartWarnings(*world).c_str(), stderr);
+    std::fputs(terminal::startWarnings(*world).c_str(), stderr);
   }
   // From here on a signal stops the run cleanly: one that arrives while the outputs are being
   // created cancels the first increment, so the initial state is written and no .part is left.

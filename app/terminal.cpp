@@ -118,21 +118,25 @@ std::string forcedStartWarnings(const World& world, const ContactParams& c, cons
     r = std::max(r, fs.radius[f]), prox = std::max(prox, 2 * c.reach[f]);
   const double a = st.forcedAllowance, h = spread + 2 * r;
   const int n = st.increments;
-  const int idle = a > h ? int(std::floor(n * (a - h) / a)) : 0;
+  // The last increment ends at the plain forced gap, so at most n - 1 are idle.
+  const int idle = a > h ? std::min(n - 1, int(std::floor(n * (a - h) / a))) : 0;
   std::string out;
   if (idle > 0)
     out += format("    warning: the allowance %g mm exceeds the fibres' whole height along the "
                   "direction at the start, %.3g mm (their centres' spread and 2 R): no overlap "
-                  "can be that deep, and the first %s of the step's %d have nothing to do "
-                  "(give about the deepest overlap of the start)\n",
-                  a, h, counted(idle, "increment").c_str(), n);
+                  "can be that deep, and the step's first %s (of %d) %s nothing to do (give "
+                  "about the deepest overlap of the start, at most %.3g mm)\n",
+                  a, h, idle == 1 ? "increment" : counted(idle, "increment").c_str(), n,
+                  idle == 1 ? "has" : "have", h);
   if (spread > prox)
     out += format("    warning: the fibres' centres spread %.3g mm along the direction, more than "
                   "the proximity distance %.3g mm: a pair in the wrong order further apart is "
-                  "not detected until it comes within it, and then at up to 2 R + %.3g mm of "
-                  "penetration at once, less the allowance left; a `proximity_distance` of at "
-                  "least %.3g mm sees every pair from the start\n",
-                  spread, prox, prox, spread);
+                  "not detected until it comes within it, and then at up to %.3g mm of "
+                  "penetration at once (2 R + the proximity distance), less the allowance left; "
+                  "a `proximity_distance` of at least %.3g mm sees every pair from the start "
+                  "(a bound from all the centres: check that the direction is normal to the "
+                  "layers it separates)\n",
+                  spread, prox, 2 * r + prox, spread);
   return out;
 }
 
@@ -316,9 +320,13 @@ std::string describeProblem(const World& world, const std::string& scene, int th
   return out;
 }
 
-std::string toolStartWarnings(const World& world) {
+std::string startWarnings(const World& world) {
   std::string out;
   for (Index t = 0; t < world.tools().size(); ++t) out += toolStartWarning(world, t);
+  const SceneDef& s = world.scene();
+  if (s.contact.enabled && !s.steps.empty() && s.steps[0].forcedNormal.squaredNorm() > 0 &&
+      world.time() == 0)
+    out += forcedStartWarnings(world, resolveContact(world.fibres(), s), s.steps[0]);
   return out;
 }
 
@@ -338,10 +346,11 @@ void printIteration(const Progress& p) {
 void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Explained& explained) {
   if (v == Verbosity::Quiet) return;
   const StepDef& st = scene.steps[r.step];
+  // "1 iteration " keeps the column of "2 iterations".
   std::string line = format("step %d/%zu  increment %d/%d  t = %-8.6g %2d iteration%s  "
                             "residual %.2e",
                             r.step + 1, scene.steps.size(), r.increment, st.increments, r.time,
-                            r.iterations, r.iterations == 1 ? "" : "s", r.residual);
+                            r.iterations, r.iterations == 1 ? " " : "s", r.residual);
   if (r.cutbacks > 0) line += "  " + counted(r.cutbacks, "cutback");
   if (r.dampedSteps > 0) line += "  " + counted(r.dampedSteps, "damped step");
   const bool contact = scene.contact.enabled || !scene.tools.empty();

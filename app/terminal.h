@@ -18,9 +18,9 @@ enum class Verbosity { Quiet, Normal, Verbose };  // errors and summary; + incre
 // threads. Each line starts with "  " after a first line "fibra VERSION: SCENE".
 std::string describeProblem(const World& world, const std::string& scene, int threads);
 
-// The tools' start warnings of describeProblem alone (a tool placed inside the fibres), for
-// --quiet, which prints no description.
-std::string toolStartWarnings(const World& world);
+// The start warnings of describeProblem alone (a tool placed inside the fibres, a first forced
+// step's allowance or spread), for --quiet, which prints no description.
+std::string startWarnings(const World& world);
 
 // What a run's terminal has explained once already (a mark that recurs gets its note once).
 struct Explained {

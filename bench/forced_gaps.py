@@ -82,16 +82,30 @@ def main():
     ap.add_argument("--samples", type=int, default=8, help="points per element")
     ap.add_argument("--show", type=int, default=8, help="pairs printed")
     a = ap.parse_args()
-    d = [float(v) for v in a.direction.split(",")]
-    norm = math.sqrt(sum(v * v for v in d))
-    if len(d) != 3 or norm == 0:
-        fail("--direction: three numbers, not all zero")
+    try:
+        d = [float(v) for v in a.direction.split(",")]
+    except ValueError:
+        d = []
+    if len(d) != 3 or not all(math.isfinite(v) for v in d) or not any(d):
+        fail(f"--direction: three finite numbers x,y,z, not all zero (got '{a.direction}')")
+    norm = math.hypot(*d)
     d = [v / norm for v in d]
+    if not a.reach > 0 or not math.isfinite(a.reach):
+        fail(f"--reach: a proximity distance > 0, mm (got {a.reach})")
+    if a.samples < 1:
+        fail(f"--samples: at least 1 point per element (got {a.samples})")
+    if not a.allowance >= 0 or not math.isfinite(a.allowance):
+        fail(f"--allowance: a finite overlap >= 0, mm (got {a.allowance})")
     try:
         fibres = {f["name"]: f for f in json.load(open(a.scene))["fibres"]}
-    except (OSError, ValueError, KeyError) as e:
-        fail(f"{a.scene}: not an expanded scene with fibres ({e})")
+        for f in fibres.values():
+            float(f["radius"])
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        fail(f"{a.scene}: not an expanded scene whose fibres have names and radii ({e}; "
+             "write one with `fibra expand SCENE --out FILE`)")
     state = load_state(a.state)
+    if not set(state) & set(fibres):
+        fail(f"{a.state} and {a.scene}: no fibre name in common (the state of another scene?)")
     pts = {name: samples(p, a.samples) for name, p in state.items()}
     names = sorted(n for n in pts if n in fibres)
     pairs = []
@@ -125,12 +139,13 @@ def main():
 
 
 def fi_length(f):
-    """Reference arc length of a fibre of line geometry (the generators' fibres), mm."""
+    """Reference arc length of a fibre of line geometry (the generators' fibres; a polyline of
+    several points sums its pieces), mm."""
     g = f.get("geometry", {})
     if g.get("type") != "line":
         fail(f"fibre '{f['name']}': only line geometries are read (levels are by arc length)")
-    p, q = g["points"]
-    return math.dist(p, q)
+    points = g.get("points", [])
+    return sum(math.dist(p, q) for p, q in zip(points, points[1:]))
 
 
 if __name__ == "__main__":

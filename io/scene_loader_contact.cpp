@@ -2,6 +2,7 @@
 // a contact pair-class rule, a step's forced normals. Ranges and cross-references (unknown
 // classes, repeated pairs, level order) are checked when the world resolves them
 // (engine/contact_classes.h), so that a SceneDef filled in code gets the same errors.
+#include "core/format.h"
 #include "io/json_reader.h"
 #include "io/scene_sections.h"
 
@@ -56,11 +57,15 @@ ContactPairDef readContactPair(const Json& j, const std::string& path) {
 void readForcedNormals(const Json& j, const std::string& path, StepDef& s) {
   const Fields f(j, path, {"direction", "allowance"});
   const Vec3 d = asVec3(f.at("direction"), f.path("direction"));
-  if (!(d.norm() > 0) || !d.allFinite()) fail(f.path("direction"), "must be a non-zero vector");
-  s.forcedNormal = d.normalized();
+  // stableNorm: a direction of huge or tiny components (1e160, 1e-170) neither overflows to a
+  // zero normal nor underflows to a refused one.
+  if (!d.allFinite() || !(d.stableNorm() > 0))
+    fail(f.path("direction"), "must be a finite, non-zero vector");
+  s.forcedNormal = d.stableNormalized();
   s.forcedAllowance = f.number("allowance", 0.0);
   if (!(s.forcedAllowance >= 0) || !std::isfinite(s.forcedAllowance))
-    fail(f.path("allowance"), "must be a finite overlap >= 0, mm");
+    fail(f.path("allowance"), "must be a finite overlap >= 0, mm (got " +
+                                  number(s.forcedAllowance) + ")");
 }
 
 }  // namespace fibra::scene_sections

@@ -214,8 +214,22 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   REQUIRE(huge.status == 0);
   CHECK(huge.output.find("    warning: the allowance 1 mm exceeds the fibres' whole height along "
                          "the direction at the start, 0.2 mm (their centres' spread and 2 R): no "
-                         "overlap can be that deep, and the first 3 increments of the step's 4 "
+                         "overlap can be that deep, and the step's first 3 increments (of 4) "
                          "have nothing to do") != std::string::npos);
+  // --quiet prints no description but still the start warnings.
+  const RunResult quiet =
+      runFibra({"run", scratch / "huge.json", "--out", scratch / "huge", "--quiet"}, scratch);
+  CHECK(countLines(quiet.output, R"(^    warning: the allowance 1 mm exceeds)") == 1);
+  // One idle increment is said in the singular; never all of them (the last ends at the plain
+  // forced gap): 0.3 mm idles 1 of 4 (0.225 >= 0.2), 1e300 mm 3 of 4.
+  for (const auto& [a, said] : {std::pair{0.3, "the step's first increment (of 4) has nothing"},
+                                std::pair{1e300, "the step's first 3 increments (of 4) have"}}) {
+    j["steps"][0]["forced_normals"]["allowance"] = a;
+    writeFile(scratch / "idle.json", j.dump());
+    CHECK(runFibra({"check", scratch / "idle.json"}, scratch).output.find(said) !=
+          std::string::npos);
+  }
+  j["steps"][0]["forced_normals"]["allowance"] = 0.2;
   CHECK(huge.output.find("centres spread") == std::string::npos);  // every centre in z = 0
   // The thick yarns' bench scene: centres spread 2 x 0.0468 = 0.0935 mm along z (three rows of
   // the hexagonal section), beyond Delta_prox = 3R = 0.078 mm; with 0.1 mm given, no warning.
@@ -375,7 +389,7 @@ TEST_CASE("fibra run explains a capped loop A once and counts in the singular fo
   CHECK(countLines(r.output, R"(^  note: loop A capped: .* of its detection 1 )"
                              R"(\(contact.max_detection_loops\))") == 1);
   // "1 iteration", never "1 iterations"; and the plural elsewhere.
-  CHECK(countLines(r.output, R"(^step .* t = \S+ +1 iteration  residual)") >= 1);
+  CHECK(countLines(r.output, R"(^step .* t = \S+ +1 iteration   residual)") >= 1);
   CHECK(countLines(r.output, R"( 1 iterations )") == 0);
   CHECK(countLines(r.output, R"(^step .* t = \S+ +[2-9] iterations  residual)") >= 1);
 }

@@ -328,14 +328,21 @@ TEST_CASE("the scene file reads classes, level tables, pair rules and forced nor
   j["fibres"][0]["levels"] = {{0, 1}, {2, -1}};
   j["steps"][0]["forced_normals"]["direction"] = {0, 0, 0};
   CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
-        "s.json: steps[0].forced_normals.direction: must be a non-zero vector");
+        "s.json: steps[0].forced_normals.direction: must be a finite, non-zero vector");
+  // Huge and tiny components: the unit vector, not an overflow to a zero normal (forcing off)
+  // nor an underflow to a refused one.
+  j["steps"][0]["forced_normals"]["direction"] = {0, 0, 1e160};
+  CHECK(loadSceneFromString(j.dump(), "s.json").steps[0].forcedNormal == Vec3::UnitZ());
+  j["steps"][0]["forced_normals"]["direction"] = {0, 1e-170, 1e-170};
+  CHECK((loadSceneFromString(j.dump(), "s.json").steps[0].forcedNormal -
+         Vec3(0, 1, 1).normalized()).norm() < 1e-15);
   j["steps"][0]["forced_normals"]["direction"] = {0, 0, -3};
   const SceneDef r = loadSceneFromString(j.dump(), "s.json");
   CHECK(r.steps[0].forcedNormal == -Vec3::UnitZ());
   CHECK(r.steps[0].forcedAllowance == 0);
   j["steps"][0]["forced_normals"]["allowance"] = -0.1;
   CHECK(errorOf([&] { loadSceneFromString(j.dump(), "s.json"); }) ==
-        "s.json: steps[0].forced_normals.allowance: must be a finite overlap >= 0, mm");
+        "s.json: steps[0].forced_normals.allowance: must be a finite overlap >= 0, mm (got -0.1)");
   j["steps"][0]["forced_normals"]["allowance"] = 0.25;
   CHECK(loadSceneFromString(j.dump(), "s.json").steps[0].forcedAllowance == 0.25);
   REQUIRE(r.fibres[0].levels.size() == 2);
