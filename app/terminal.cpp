@@ -4,6 +4,7 @@
 #include "engine/contact_setup.h"
 #include "engine/free_spin.h"
 #include "engine/torqued_strings.h"
+#include "systems/contact_params.h"
 #include "systems/contact_queries.h"
 #include "systems/interpolation.h"
 #include "systems/linear_solver.h"
@@ -104,18 +105,25 @@ double spreadAlong(const FibreStore& fs, const Vec3& d) {
   return fs.nodes() > 0 ? hi - lo : 0;
 }
 
-// Warnings on the first step's forced normals at the scene's start (S the centres' spread along
-// D, H = S + 2 max R the fibres' height, a bound on any pair's overlap along D):
-// - an allowance A > H leaves the first floor(n (A - H) / A) of n increments nothing to push out;
+// Warnings on the first step's forced normals at the scene's start, "" for any other state or
+// scene (S the centres' spread along D, H = S + 2 max R the fibres' height, a bound on any
+// pair's overlap along D):
+// - an allowance A > H leaves the first min(n - 1, floor(n (A - H) / A)) of n increments
+//   nothing to push out;
 // - S beyond the proximity distance: a pair in the wrong order further apart than Delta_prox is
 //   not detected until it comes within it, at a penetration of up to 2R + Delta_prox - A at once
 //   (docs/RESULTS.md "Forced normals with an allowance: thick yarns").
-std::string forcedStartWarnings(const World& world, const ContactParams& c, const StepDef& st) {
+std::string forcedStartWarnings(const World& world, const ContactParams& c) {
+  const SceneDef& s = world.scene();
+  if (!c.fibres || s.steps.empty() || s.steps[0].forcedNormal.squaredNorm() == 0 ||
+      world.time() != 0)
+    return "";
+  const StepDef& st = s.steps[0];
   const FibreStore& fs = world.fibres();
-  const double spread = spreadAlong(fs, st.forcedNormal.normalized());
+  const double spread = spreadAlong(fs, st.forcedNormal);  // a unit vector (validated)
   double r = 0, prox = 0;
   for (Index f = 0; f < fs.fibres(); ++f)
-    r = std::max(r, fs.radius[f]), prox = std::max(prox, 2 * c.reach[f]);
+    r = std::max(r, fs.radius[f]), prox = std::max(prox, proximityDistance(c, f, f));
   const double a = st.forcedAllowance, h = spread + 2 * r;
   const int n = st.increments;
   // The last increment ends at the plain forced gap, so at most n - 1 are idle.
@@ -152,7 +160,7 @@ std::string forcedLines(const World& world, const ContactParams& c) {
                   s.steps[i].name.empty() ? "" : (" (" + s.steps[i].name + ")").c_str(), d.x(),
                   d.y(), d.z(),
                   a > 0 ? format(", allowance %g mm released over the step", a).c_str() : "");
-    if (i == 0 && world.time() == 0) out += forcedStartWarnings(world, c, s.steps[i]);
+    if (i == 0) out += forcedStartWarnings(world, c);
   }
   return out;
 }
@@ -323,10 +331,8 @@ std::string describeProblem(const World& world, const std::string& scene, int th
 std::string startWarnings(const World& world) {
   std::string out;
   for (Index t = 0; t < world.tools().size(); ++t) out += toolStartWarning(world, t);
-  const SceneDef& s = world.scene();
-  if (s.contact.enabled && !s.steps.empty() && s.steps[0].forcedNormal.squaredNorm() > 0 &&
-      world.time() == 0)
-    out += forcedStartWarnings(world, resolveContact(world.fibres(), s), s.steps[0]);
+  if (world.scene().contact.enabled)
+    out += forcedStartWarnings(world, resolveContact(world.fibres(), world.scene()));
   return out;
 }
 

@@ -19,47 +19,17 @@ looks only within Δprox, does not see.
       --reach 0.078
 """
 import argparse
-import csv
 import json
 import math
+import os
 import sys
-from collections import defaultdict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from centreline_overlap import load_fibres, samples  # noqa: E402
 
 
 def fail(msg):
     sys.exit("forced_gaps.py: " + msg)
-
-
-def load_state(path):
-    """{fibre: [(x, y, z) per node]} from a final_state.csv."""
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.DictReader(f))
-    except OSError as e:
-        fail(f"{path}: {e.strerror}")
-    if not rows or any(c not in rows[0] for c in ("fibre", "x", "y", "z")):
-        fail(f"{path}: not a final_state.csv (columns fibre, x, y, z)")
-    nodes = defaultdict(list)
-    for r in rows:
-        nodes[r["fibre"]].append((float(r["x"]), float(r["y"]), float(r["z"])))
-    return nodes
-
-
-def samples(p, m):
-    """Points along a fibre of quadratic elements (2 n + 1 nodes), m per element, with the
-    fraction of the arc length at each (equal reference element lengths)."""
-    if len(p) % 2 == 0:
-        fail("a fibre with an even node count: these scripts take quadratic elements")
-    out, n = [], (len(p) - 1) // 2
-    for e in range(n):
-        a, b, c = p[2 * e], p[2 * e + 1], p[2 * e + 2]
-        for k in range(m):
-            t = k / m
-            w = ((1 - t) * (1 - 2 * t), 4 * t * (1 - t), t * (2 * t - 1))
-            out.append((tuple(w[0] * a[q] + w[1] * b[q] + w[2] * c[q] for q in range(3)),
-                        (e + t) / n))
-    out.append((p[-1], 1.0))
-    return out
 
 
 def level_at(levels, s):
@@ -103,10 +73,14 @@ def main():
     except (OSError, ValueError, KeyError, TypeError) as e:
         fail(f"{a.scene}: not an expanded scene whose fibres have names and radii ({e}; "
              "write one with `fibra expand SCENE --out FILE`)")
-    state = load_state(a.state)
+    state = load_fibres(a.state)
     if not set(state) & set(fibres):
         fail(f"{a.state} and {a.scene}: no fibre name in common (the state of another scene?)")
-    pts = {name: samples(p, a.samples) for name, p in state.items()}
+    # (centre, fraction of the arc length) at the samples of each fibre
+    pts = {}
+    for name, rows in state.items():
+        elements = (len(rows) - 1) // 2
+        pts[name] = [(x0, u / elements) for u, x0, _, _ in samples(rows, a.samples)]
     names = sorted(n for n in pts if n in fibres)
     pairs = []
     for i, ni in enumerate(names):

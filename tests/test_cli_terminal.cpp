@@ -229,7 +229,6 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
     CHECK(runFibra({"check", scratch / "idle.json"}, scratch).output.find(said) !=
           std::string::npos);
   }
-  j["steps"][0]["forced_normals"]["allowance"] = 0.2;
   CHECK(huge.output.find("centres spread") == std::string::npos);  // every centre in z = 0
   // The thick yarns' bench scene: centres spread 2 x 0.0468 = 0.0935 mm along z (three rows of
   // the hexagonal section), beyond Delta_prox = 3R = 0.078 mm; with 0.1 mm given, no warning.
