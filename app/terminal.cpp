@@ -53,6 +53,9 @@ std::string lawLine(const ContactParams& c) {
                               : std::string(" (plain)");
   if (c.fibres && c.newtonFrictionlessOnly)
     out += ", frictionless parallel normals linearised in Newton once loop B diverges";
+  if (c.fibres && c.escalateNormals)
+    out += ", a failed attempt retried once with every fibre normal linearised (kept to the "
+           "step's end where it converges)";
   if (c.mu > 0 || c.tools)  // friction is possible (tools carry their own mu)
     out += c.frictionFlips > 0 ? format(", stick/slip held after %d changes (tolerance %g)",
                                         c.frictionFlips, c.frictionTolerance)
@@ -381,6 +384,16 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
                  "penalty still changed, after it; contact.loop_a_capped and contact.redetect_* "
                  "in the history say how far a fresh detection would differ (said once)\n",
                  scene.contact.maxDetectionLoops);
+  }
+  if (r.normalRetries > 0 && !explained.normalRetry) {
+    explained.normalRetry = true;
+    std::fprintf(stderr, "  note: %s (contact.normal_update \"auto\"; normal_retries in the "
+                         "history; said once)\n",
+                 r.normalsLinearised
+                     ? "an attempt failed with loop B's normals and converged with every fibre "
+                       "normal linearised in Newton; the rest of the step keeps them"
+                     : "a failed attempt, retried with every fibre normal linearised in Newton, "
+                       "failed again; the step goes on with loop B's normals");
   }
   if (contact && c.normalRestarts > 0)
     std::fprintf(stderr,

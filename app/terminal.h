@@ -25,6 +25,7 @@ std::string startWarnings(const World& world);
 // What a run's terminal has explained once already (a mark that recurs gets its note once).
 struct Explained {
   bool loopCapped = false;  // "loop A capped"
+  bool normalRetry = false; // an attempt retried with every fibre normal linearised
 };
 
 void printIteration(const Progress& p);

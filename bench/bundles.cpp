@@ -15,7 +15,7 @@
 //                       [--pmax 5e-4,1e-4] [--elements N] [--threads N] [--line-search on|off]
 //                       [--damping C]  (viscous continuation on every step, StepDef::damping)
 //                       [--hold-after N]  (contact.friction_hold_after; 0: statuses never held)
-//                       [--normal-update newton|loop|newton_frictionless]
+//                       [--normal-update auto|newton|loop|newton_frictionless]
 //                       [--facing on|off]  (contact.facing_particles, default on)
 //                       [--end-spin free|held]  (squeeze: the spin of the fibres' held ends;
 //                       default free, bench/contact_scenes.h holdEndSpin)
@@ -152,6 +152,7 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--normal-update"))
       normalUpdate = !std::strcmp(argv[i + 1], "loop")     ? NormalUpdate::Loop
                      : !std::strcmp(argv[i + 1], "newton") ? NormalUpdate::Newton
+                     : !std::strcmp(argv[i + 1], "auto")   ? NormalUpdate::Auto
                                                            : NormalUpdate::NewtonFrictionless;
     if (!std::strcmp(argv[i], "--facing")) facing = !std::strcmp(argv[i + 1], "on");
     if (!std::strcmp(argv[i], "--end-spin")) heldSpin = !std::strcmp(argv[i + 1], "held");
@@ -165,6 +166,7 @@ int main(int argc, char** argv) {
               holdAfter, facing ? "on" : "off",
               normalUpdate == NormalUpdate::Loop     ? "loop"
               : normalUpdate == NormalUpdate::Newton ? "newton"
+              : normalUpdate == NormalUpdate::Auto   ? "auto"
                                                      : "newton_frictionless",
               heldSpin ? "held" : "free");
   std::printf("| load | fibres x elements | mu | p_max mm | converged | increments | iterations "

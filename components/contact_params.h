@@ -92,6 +92,8 @@ struct ContactParams {
   bool newtonFrictionlessOnly = false;  // with newtonNormals: only the parallel elements (eq. 10
                                         // crossing weight 0) of frictionless pairs, once loop B
                                         // diverged (systems/normal_linearisation.h)
+  bool escalateNormals = false;  // with newtonFrictionlessOnly (normal_update "auto"): a failed
+                                 // attempt is tried again with allNormals (engine/step_driver.cpp)
   ElementPlacement placement = ElementPlacement::Weighted;  // line contacts' elements (above)
   bool followCrossings = false; // frictionless crossings' sections follow the closest points in
                                 // loop B (systems/crossing_follow.h)
@@ -131,6 +133,8 @@ struct ContactParams {
   double frictionFactor = 1;  // the current step's factor on every mu (StepDef::frictionFactor)
   bool unstableNormals = false;  // loop B's update of the normals diverged in this attempt (set
                                  // by the contact loops, cleared by the step driver)
+  bool allNormals = false;  // this attempt linearises every linearisable fibre normal, as with
+                            // "newton" (escalateNormals; set by the step driver)
 };
 
 }  // namespace fibra

@@ -133,6 +133,10 @@ struct StepReport {
   int subIncrements = 0;    // converged attempts that make up this increment
   int predicted = 0;        // converged attempts that started from the secant predictor
   int predictorRetries = 0;  // predicted attempts that failed and were retried without it
+  int normalRetries = 0;    // failed attempts tried again at the same size with the other normal
+                            // update: every fibre normal linearised after loop B's, or loop B's
+                            // after the linearised ones the step kept (normal_update "auto")
+  bool normalsLinearised = false;  // the last converged attempt linearised every fibre normal
   int dampedSteps = 0;      // Newton steps the cycle damping halved, all attempts
                             // (systems/newton.h)
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt

@@ -122,7 +122,7 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
     const bool mixed = mixer.record(w.trial.elements);
     // Diverging with frictionless parallel elements: their normals go into Newton from now on,
     // after a restart of the increment (solveContactIncrement).
-    if (s.newtonFrictionlessOnly && !s.unstableNormals && mixer.unstable() &&
+    if (s.newtonFrictionlessOnly && !s.unstableNormals && !s.allNormals && mixer.unstable() &&
         anyFrictionlessParallel(w)) {
       w.contact.unstableNormals = true;
       break;

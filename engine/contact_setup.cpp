@@ -95,7 +95,9 @@ ContactParams resolveContact(const FibreStore& fs, const SceneDef& scene) {
   p.frictionFlips = def.frictionHoldAfter;
   p.frictionTolerance = def.frictionHoldTolerance;
   p.newtonNormals = def.normalUpdate != NormalUpdate::Loop;
-  p.newtonFrictionlessOnly = def.normalUpdate == NormalUpdate::NewtonFrictionless;
+  p.newtonFrictionlessOnly = def.normalUpdate == NormalUpdate::NewtonFrictionless ||
+                             def.normalUpdate == NormalUpdate::Auto;
+  p.escalateNormals = def.normalUpdate == NormalUpdate::Auto;
   p.followCrossings = def.followCrossings;
   p.facingParticles = def.facingParticles;
   p.toolProximity = def.proximityDistance;  // NaN: per fibre, systems/tool_detection.h

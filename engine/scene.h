@@ -182,8 +182,10 @@ enum class FrictionTangent { Consistent, Symmetrised };
 // How fibre-fibre normals follow the state: recomputed at every Newton assembly with their
 // derivative in the tangent (Newton), or fixed per Newton pass and updated by loop B (Loop), or
 // Loop until loop B diverges in an increment, which then starts again with the normals of its
-// frictionless parallel elements as Newton (NewtonFrictionless; docs/CONTACT.md section 1.5).
-enum class NormalUpdate { Newton, Loop, NewtonFrictionless };
+// frictionless parallel elements as Newton (NewtonFrictionless; docs/CONTACT.md section 1.5), or
+// NewtonFrictionless where it converges and, once an attempt fails, that attempt again with every
+// fibre normal as Newton, kept for the rest of the step where it converges (Auto).
+enum class NormalUpdate { Newton, Loop, NewtonFrictionless, Auto };
 // The largest Anderson memory of loop B (contact `normal_acceleration`).
 inline constexpr int kMaxNormalAcceleration = 10;
 // Bounds of ContactDef::stepPenetration (x p_max): below 1 an element could not reach its own
@@ -236,7 +238,7 @@ struct ContactDef {
                                       // its status is held for the pass (0: never; <= 255)
   double frictionHoldTolerance = 0.01;  // a held status is consistent within this relative
                                         // distance of the slip circle (friction force error)
-  NormalUpdate normalUpdate = NormalUpdate::NewtonFrictionless;
+  NormalUpdate normalUpdate = NormalUpdate::Auto;
   int normalAcceleration = 3;         // Anderson memory of loop B on the normals, passes (0: the
                                       // plain update; <= 10)
   bool followCrossings = false;       // frictionless crossings' sections follow the closest

@@ -4,7 +4,9 @@
 //      by the secant predictor (startAttempt); Newton on the free DOFs (with contact: the nested
 //      loops of engine/contact_loops.h);
 //   3. converged: commit (swap trial and committed, keep q, r, f_ext) and go on to the target;
-//      failed: discard the trial (back to the last converged q, r, f_ext); an attempt that
+//      failed: discard the trial (back to the last converged q, r, f_ext); with contact
+//      normal_update "auto" an attempt with loop B's normals is tried again at its size with
+//      every fibre normal linearised, and back (retryNormals); an attempt that
 //      started from the predictor is tried again at its size without it, any other cuts the
 //      attempt's size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
 //      state. Where nothing the scene prescribes changes over the failed attempt and the step
@@ -126,6 +128,38 @@ NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
 // failure, quartered when no iteration came within the reference force (smallest relative
 // residual above 1: far outside Newton's basin). Factors of 2 keep every size a power-of-two
 // fraction of the nominal increment.
+// Contact normal_update "auto": an attempt that failed with the loop's normals (the fixed point
+// of loop B, the frictionless parallel ones linearised where it diverged) is tried again, from
+// the same start and at the same size, with every fibre normal linearised (as "newton");
+// converged, the step keeps them (linearisedStep); failed, then or in a later attempt, the step
+// goes back to the loop's normals for good (escalationFailedStep), a kept attempt retried with
+// them at the same size. A failed retry leaves the step where the attempt before it was: what
+// follows (predictor off, or the cutback's size) is judged by that attempt.
+// Returns whether the attempt at tTry is to be tried again; `escalating` says whether that retry
+// linearises every normal.
+bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& escalating,
+                  StepReport& rep) {
+  escalating = false;
+  if (!w.contact.escalateNormals || !w.contact.fibres || nr.outcome != NewtonOutcome::Failed)
+    return false;
+  std::string retry;
+  if (!w.linearise) {
+    if (w.escalationFailedStep == w.step) return false;
+    escalating = true;
+    retry = "every fibre normal linearised";
+  } else {
+    const bool kept = w.linearisedStep == w.step;
+    w.escalationFailedStep = w.step;
+    w.linearisedStep = -1;
+    if (!kept) return false;
+    retry = "loop B's normals again";
+  }
+  ++rep.normalRetries;
+  rep.message += (rep.message.empty() ? "" : "; ") + retry + " at t = " + number(tTry) + ": " +
+                 nr.message;
+  return true;
+}
+
 double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonResult& nr) {
   if (nr.outcome == NewtonOutcome::Converged)
     return 2 * nr.longestPass <= st.maxIterations ? std::min(2 * dt, nominal) : dt;
@@ -145,6 +179,7 @@ void beginAttempt(WorldState& w, const StepDef& st, double tTry, double tStart) 
       st.forcedAllowance * std::max(0.0, st.endTime - tTry) / (st.endTime - tStart);
   w.contact.frictionFactor = st.frictionFactor;
   w.contact.unstableNormals = false;
+  w.contact.allNormals = w.linearise;
   setSymmetric(w, symmetricTangent(w));
   w.stabilisation.qStart = w.fibres.q;
   w.stabilisation.viscous = st.damping / size;
@@ -326,6 +361,8 @@ StepReport advance(WorldState& w) {
   const double nominal = (st.endTime - tStart) / st.increments;
   if (w.increment == 0 || !(w.dt > 0)) w.dt = nominal;
   bool retried = false;  // a predicted attempt failed: the increment goes on without the predictor
+  bool escalating = false;  // the attempt retries a failed one with every fibre normal linearised
+  NewtonResult beforeRetry;  // the failed attempt that the retry repeats
   while (w.time < t1) {
     const double tTry = w.time + w.dt >= t1 - 1e-9 * nominal ? t1 : w.time + w.dt;
     if (!(tTry - w.time > 1e-12 * std::max(std::abs(t1), nominal)))
@@ -334,6 +371,7 @@ StepReport advance(WorldState& w) {
                                           number(tTry - w.time) +
                                           ", the round-off of the pseudo-time (" + rep.message + ")");
     w.predict = st.predictor && !retried && w.rateStep == w.step;
+    w.linearise = escalating || w.linearisedStep == w.step;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
     rep.totalIterations += nr.iterations;
     rep.dampedSteps += nr.dampedSteps;
@@ -343,6 +381,9 @@ StepReport advance(WorldState& w) {
       rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
       rep.predicted += w.predict;
       commit(w, tTry);
+      if (w.linearise) w.linearisedStep = w.step;
+      rep.normalsLinearised = w.linearise;
+      escalating = false;
       rep.iterations = nr.iterations;
       rep.residual = nr.residual;
       w.dt = nextIncrement(w.dt, nominal, st, nr);
@@ -350,6 +391,14 @@ StepReport advance(WorldState& w) {
       continue;
     }
     discard(w);
+    const bool wasRetry = escalating;
+    if (retryNormals(w, nr, tTry, escalating, rep)) {
+      if (escalating) beforeRetry = nr;
+      continue;
+    }
+    // A failed retry with every normal linearised: the step goes on as the attempt before it
+    // would have, its size judged by that attempt (nextIncrement).
+    const NewtonResult& judged = wasRetry ? beforeRetry : nr;
     if (w.predict && nr.outcome == NewtonOutcome::Failed) {
       retried = true;
       ++rep.predictorRetries;
@@ -357,7 +406,7 @@ StepReport advance(WorldState& w) {
                      number(tTry) + ": " + nr.message;
       continue;
     }
-    w.dt = nextIncrement(tTry - w.time, nominal, st, nr);
+    w.dt = nextIncrement(tTry - w.time, nominal, st, judged);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled) return stop(StepStatus::Cancelled, "cancelled");
     if (!(st.damping > 0) && nothingPrescribedChanges(w.scene, st, w.time, tTry))

@@ -81,6 +81,11 @@ struct WorldState {
   Eigen::VectorXd rate;
   int rateStep = -1;
   bool predict = false;      // whether the attempt in progress starts from the predictor
+  // contact normal_update "auto" (engine/step_driver.cpp): the step whose attempts linearise
+  // every fibre normal (one of its attempts failed with the loop's normals and converged
+  // linearised), and the step where a linearised retry failed (no more retries there); -1: none.
+  int linearisedStep = -1, escalationFailedStep = -1;
+  bool linearise = false;    // whether the attempt in progress linearises every fibre normal
 };
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }

@@ -36,15 +36,15 @@ std::vector<Index> probeNodes(const World& world) {
 
 HistoryColumns incrementColumns() {
   return {{"time", "step", "increment", "load_factor", "iterations", "total_iterations", "cutbacks",
-           "sub_increments", "smallest_increment", "predicted", "predictor_retries", "damped_steps",
-           "residual", "wall_s"},
+           "sub_increments", "smallest_increment", "predicted", "predictor_retries",
+           "normal_retries", "damped_steps", "residual", "wall_s"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             row.insert(row.end(), {r.time, double(r.step + 1), double(r.increment), r.loadFactor,
                                    double(r.iterations), double(r.totalIterations),
                                    double(r.cutbacks), double(r.subIncrements),
                                    r.smallestIncrement, double(r.predicted),
-                                   double(r.predictorRetries), double(r.dampedSteps),
-                                   r.residual, r.timings.total});
+                                   double(r.predictorRetries), double(r.normalRetries),
+                                   double(r.dampedSteps), r.residual, r.timings.total});
           }};
 }
 

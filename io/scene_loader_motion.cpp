@@ -200,7 +200,8 @@ ContactDef readContact(const Json& j, const std::string& path) {
   c.normalUpdate = f.choice("normal_update",
                             {{"newton", NormalUpdate::Newton},
                              {"loop", NormalUpdate::Loop},
-                             {"newton_frictionless", NormalUpdate::NewtonFrictionless}},
+                             {"newton_frictionless", NormalUpdate::NewtonFrictionless},
+                             {"auto", NormalUpdate::Auto}},
                             c.normalUpdate);
   c.normalAcceleration = f.integer("normal_acceleration", c.normalAcceleration);
   c.followCrossings = f.boolean("follow_crossings", c.followCrossings);

@@ -26,10 +26,11 @@ inline int testIntervalsPerElement(const FibreStore& fs, const ContactParams& p,
 }
 
 // Whether fibre-fibre normals may be linearised in Newton now: contact normal_update "newton",
-// or "newton_frictionless" once loop B diverged in this attempt (systems/normal_linearisation.h
+// or "newton_frictionless" ("auto") once loop B diverged in this attempt, or "auto" in an attempt
+// with every normal linearised (allNormals) (systems/normal_linearisation.h
 // says which elements).
 inline bool normalsInNewton(const ContactParams& p) {
-  return p.newtonNormals && (!p.newtonFrictionlessOnly || p.unstableNormals);
+  return p.newtonNormals && (!p.newtonFrictionlessOnly || p.unstableNormals || p.allNormals);
 }
 
 // Pair-class index of fibres I and J (ContactClasses::mu, pMax).

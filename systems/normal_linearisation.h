@@ -52,11 +52,12 @@ inline bool frictionlessParallel(const ContactParams& p, const ContactElementSto
 // particle, kept fixed in a pass and updated by loop B as with "loop": linearised, the end of a
 // cantilever sliding off a crossing fibre's flank diverges where the fixed point converges).
 // With newtonFrictionlessOnly ("newton_frictionless") only frictionlessParallel elements, and
-// only once loop B diverged (unstableNormals): linearisable says which they would be.
+// only once loop B diverged (unstableNormals): linearisable says which they would be; every one
+// in an attempt of "auto" with allNormals.
 inline bool linearisableNormal(const ContactParams& p, const ContactElementStore& el, Index e) {
   return !(el.fallback[e] & (kEndFaceI | kEndFaceJ)) &&
          !el.forced[e] &&
-         (!p.newtonFrictionlessOnly || frictionlessParallel(p, el, e));
+         (!p.newtonFrictionlessOnly || p.allNormals || frictionlessParallel(p, el, e));
 }
 inline bool linearisedNormal(const ContactParams& p, const ContactElementStore& el, Index e) {
   return normalsInNewton(p) && linearisableNormal(p, el, e);

@@ -174,8 +174,9 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
         "p_max, step limit 10 p_max, g_T,max 0.0005 mm, friction tangent consistent, element "
         "placement weighted, normals "
         "updated by loop B (Anderson memory 3 when unstable), frictionless parallel normals "
-        "linearised in Newton once loop B diverges, "
-        "stick/slip held after 2 changes (tolerance 0.01)\n",
+        "linearised in Newton once loop B diverges, a failed attempt retried once with every fibre "
+        "normal linearised (kept to the step's end where it converges), stick/slip held after 2 "
+        "changes (tolerance 0.01)\n",
         "  contact classes: warp (3 fibres), weft (3 fibres)\n",
         "  contact pairs (other pairs: the section's mu, p_max and penalty above):\n"
         "    [warp, weft]: mu 0.1, p_max 0.0005 mm, penalty 1 .. 10000 x E R\n"
@@ -391,4 +392,62 @@ TEST_CASE("fibra run explains a capped loop A once and counts in the singular fo
   CHECK(countLines(r.output, R"(^step .* t = \S+ +1 iteration   residual)") >= 1);
   CHECK(countLines(r.output, R"( 1 iterations )") == 0);
   CHECK(countLines(r.output, R"(^step .* t = \S+ +[2-9] iterations  residual)") >= 1);
+}
+
+TEST_CASE("fibra run explains once an attempt retried with every fibre normal linearised") {
+  // A 7-fibre bundle clamped at both ends, pulled and twisted a quarter turn in 6 increments,
+  // mu = 0.3 (the scene of tests/test_normal_update_auto.cpp): the twist's third attempt fails
+  // with loop B's normals and converges linearised (contact normal_update "auto").
+  TempDir scratch("cli_normal_retry");
+  fs::create_directories(scratch.path());
+  nlohmann::json j = {{"units", "mm-N-MPa"},
+                      {"materials", {{{"name", "m"}, {"young_modulus", 4000}, {"poisson_ratio", 0.3}}}},
+                      {"tables", {{"twist", {{0, 0}, {1, 0}, {2, 1.5707963267948966}}}}},
+                      {"contact", {{"friction", 0.3}, {"max_penetration", 5e-4}}},
+                      {"steps", {{{"end_time", 1}, {"increments", 2}},
+                                 {{"end_time", 2}, {"increments", 6}}}},
+                      {"output", {{"vtu", false}}}};
+  for (int i = 0; i < 7; ++i) {
+    const double a = (i - 1) * 3.14159265358979323846 / 3, y = i ? 0.2 * std::cos(a) : 0,
+                 z = i ? 0.2 * std::sin(a) : 0;
+    const std::string f = "f" + std::to_string(i);
+    j["fibres"].push_back({{"name", f}, {"material", "m"}, {"radius", 0.1}, {"elements", 10},
+                           {"geometry", {{"type", "line"}, {"points", {{-2, y, z}, {2, y, z}}},
+                                         {"director", {0, 0, 1}}}}});
+    j["boundary_conditions"].push_back({{"type", "clamp"}, {"group", f + ".start"}});
+    j["boundary_conditions"].push_back(
+        {{"type", "clamp"}, {"group", f + ".end"}, {"displacement", {0.004, 0, 0}},
+         {"rotation", {{"axis", {1, 0, 0}}, {"centre", {2, 0, 0}}, {"angle", "twist"}}}});
+  }
+  writeFile(scratch / "twist.json", j.dump());
+  const RunResult r = runFibra({"run", scratch / "twist.json", "--out", scratch / "out"}, scratch);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(countLines(r.output, R"(^  note: an attempt failed with loop B's normals and converged )"
+                             R"(with every fibre normal linearised in Newton; the rest of the )"
+                             R"(step keeps them \(contact.normal_update "auto")") == 1);
+  CHECK(countLines(r.output, R"(a failed attempt retried once with every fibre normal )"
+                             R"(linearised \(kept to the step's end where it converges\))") == 1);
+  const auto history = readCsv(scratch / "out" + "/history.csv");
+  REQUIRE(history.size() == 9);
+  const auto column = std::find(history[0].begin(), history[0].end(), "normal_retries");
+  REQUIRE(column != history[0].end());
+  int retries = 0;
+  for (size_t row = 1; row < history.size(); ++row)
+    retries += std::stoi(history[row][size_t(column - history[0].begin())]);
+  CHECK(retries >= 1);
+
+  // The sliding beams' first increment: the retry fails as well, and the note says so.
+  nlohmann::json beams =
+      nlohmann::json::parse(readFile(sourcePath("samples/two_beams_sliding.json")), nullptr, true,
+                            true);
+  beams["output"]["plots"] = nlohmann::json::array();
+  beams["output"]["vtu"] = false;
+  writeFile(scratch / "beams.json", beams.dump());
+  const RunResult b = runFibra({"run", scratch / "beams.json", "--out", scratch / "beams"}, scratch);
+  INFO(b.output);
+  REQUIRE(b.status == 0);
+  CHECK(countLines(b.output, R"(^  note: a failed attempt, retried with every fibre normal )"
+                             R"(linearised in Newton, failed again; the step goes on with loop )"
+                             R"(B's normals)") == 1);
 }

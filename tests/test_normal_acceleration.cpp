@@ -77,7 +77,7 @@ TEST_CASE("the full heavy line contact converges: a diverging loop B restarts wi
   // the secant's range and the run fails at t = 0.7. The default restarts such an increment
   // with the frictionless parallel normals in Newton.
   World w(loadSceneFromString(heavyLineContact("", 10), "heavy.json"));
-  REQUIRE(w.scene().contact.normalUpdate == NormalUpdate::NewtonFrictionless);  // the default
+  REQUIRE(w.scene().contact.normalUpdate == NormalUpdate::Auto);  // the default
   CHECK(loadSceneFromString(heavyLineContact(R"(, "normal_update": "newton_frictionless")"), "h.json")
             .contact.normalUpdate == NormalUpdate::NewtonFrictionless);
   double axial = 0;

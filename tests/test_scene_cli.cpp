@@ -160,7 +160,7 @@ TEST_CASE(
         std::vector<std::string>{
             "time", "step", "increment", "load_factor", "iterations", "total_iterations",
             "cutbacks", "sub_increments", "smallest_increment", "predicted",
-            "predictor_retries", "damped_steps", "residual", "wall_s",
+            "predictor_retries", "normal_retries", "damped_steps", "residual", "wall_s",
             "reaction.beam.start.fx", "reaction.beam.start.fy",
             "reaction.beam.start.fz", "reaction.beam.start.mx", "reaction.beam.start.my",
             "reaction.beam.start.mz", "energy.strain", "energy.external", "energy.supports",

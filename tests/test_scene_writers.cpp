@@ -254,6 +254,7 @@ TEST_CASE("history writer: columns of every family, reactions in equilibrium wit
                                            "smallest_increment",
                                            "predicted",
                                            "predictor_retries",
+                                           "normal_retries",
                                            "damped_steps",
                                            "residual",
                                            "wall_s",
