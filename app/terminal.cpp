@@ -370,7 +370,9 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
   if (contact && c.restarts > 0) line += "  " + counted(c.restarts, "loop restart");
   if (contact && c.loopCapped) line += "  loop A capped";
   std::fprintf(stderr, "%s  %.3g s\n", line.c_str(), r.timings.total);
-  if (r.cutbacks > 0) std::fprintf(stderr, "  cutback: %s\n", r.message.c_str());
+  // Each failed attempt as "<what followed it> at t = <its end>: <why it failed>".
+  if (r.cutbacks + r.predictorRetries + r.normalRetries > 0)
+    std::fprintf(stderr, "  failed attempts (what followed at t: why): %s\n", r.message.c_str());
   if (contact && c.consistencyPasses > 0)
     std::fprintf(stderr,
                  "  note: %d more pass(es) with a new detection at acceptance: the fibres "

@@ -450,4 +450,7 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
   CHECK(countLines(b.output, R"(^  note: a failed attempt, retried with every fibre normal )"
                              R"(linearised in Newton, failed again; the step goes on with loop )"
                              R"(B's normals)") == 1);
+  // The increment's failed attempts, each under what followed it: the retry, then cutbacks.
+  CHECK(countLines(b.output, R"(^  failed attempts \(what followed at t: why\): every fibre )"
+                             R"(normal linearised at t = 0\.04: .*; cutback at t = 0\.04: )") == 1);
 }
