@@ -133,8 +133,9 @@ struct ContactParams {
   double frictionFactor = 1;  // the current step's factor on every mu (StepDef::frictionFactor)
   bool unstableNormals = false;  // loop B's update of the normals diverged in this attempt (set
                                  // by the contact loops, cleared by the step driver)
-  bool allNormals = false;  // this attempt linearises every linearisable fibre normal, as with
-                            // "newton" (escalateNormals; set by the step driver)
+  bool allNormals = false;  // the attempt in progress linearises every linearisable fibre
+                            // normal, as with "newton" (escalateNormals; set by the step driver
+                            // before each attempt)
 };
 
 }  // namespace fibra

@@ -122,12 +122,13 @@ NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   return settings;
 }
 
-// Size of the next attempt after this one (pseudo-time): doubled after an attempt whose longest
-// Newton pass converged in at most half the iteration limit (with contact an attempt is up to
-// n_A x n_B passes), up to the nominal increment; halved after a
-// failure, quartered when no iteration came within the reference force (smallest relative
-// residual above 1: far outside Newton's basin). Factors of 2 keep every size a power-of-two
-// fraction of the nominal increment.
+// Appends a failed attempt to the increment's list: what followed it, at its end tTry, and why.
+void noteFailure(StepReport& rep, const std::string& followed, double tTry,
+                 const NewtonResult& nr) {
+  rep.message += (rep.message.empty() ? "" : "; ") + followed + " at t = " + number(tTry) + ": " +
+                 nr.message;
+}
+
 // Contact normal_update "auto": an attempt that failed with the loop's normals (the fixed point
 // of loop B, the frictionless parallel ones linearised where it diverged) is tried again, from
 // the same start and at the same size, with every fibre normal linearised (as "newton");
@@ -143,7 +144,7 @@ bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& esca
   if (!w.contact.escalateNormals || !w.contact.fibres || nr.outcome != NewtonOutcome::Failed)
     return false;
   std::string retry;
-  if (!w.linearise) {
+  if (!w.contact.allNormals) {
     if (w.escalationFailedStep == w.step) return false;
     escalating = true;
     retry = "every fibre normal linearised";
@@ -155,11 +156,16 @@ bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& esca
     retry = "loop B's normals again";
   }
   ++rep.normalRetries;
-  rep.message += (rep.message.empty() ? "" : "; ") + retry + " at t = " + number(tTry) + ": " +
-                 nr.message;
+  noteFailure(rep, retry, tTry, nr);
   return true;
 }
 
+// Size of the next attempt after this one (pseudo-time): doubled after an attempt whose longest
+// Newton pass converged in at most half the iteration limit (with contact an attempt is up to
+// n_A x n_B passes), up to the nominal increment; halved after a
+// failure, quartered when no iteration came within the reference force (smallest relative
+// residual above 1: far outside Newton's basin). Factors of 2 keep every size a power-of-two
+// fraction of the nominal increment.
 double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonResult& nr) {
   if (nr.outcome == NewtonOutcome::Converged)
     return 2 * nr.longestPass <= st.maxIterations ? std::min(2 * dt, nominal) : dt;
@@ -179,7 +185,6 @@ void beginAttempt(WorldState& w, const StepDef& st, double tTry, double tStart) 
       st.forcedAllowance * std::max(0.0, st.endTime - tTry) / (st.endTime - tStart);
   w.contact.frictionFactor = st.frictionFactor;
   w.contact.unstableNormals = false;
-  w.contact.allNormals = w.linearise;
   setSymmetric(w, symmetricTangent(w));
   w.stabilisation.qStart = w.fibres.q;
   w.stabilisation.viscous = st.damping / size;
@@ -371,7 +376,7 @@ StepReport advance(WorldState& w) {
                                           number(tTry - w.time) +
                                           ", the round-off of the pseudo-time (" + rep.message + ")");
     w.predict = st.predictor && !retried && w.rateStep == w.step;
-    w.linearise = escalating || w.linearisedStep == w.step;
+    w.contact.allNormals = escalating || w.linearisedStep == w.step;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
     rep.totalIterations += nr.iterations;
     rep.dampedSteps += nr.dampedSteps;
@@ -381,8 +386,8 @@ StepReport advance(WorldState& w) {
       rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
       rep.predicted += w.predict;
       commit(w, tTry);
-      if (w.linearise) w.linearisedStep = w.step;
-      rep.normalsLinearised = w.linearise;
+      if (w.contact.allNormals) w.linearisedStep = w.step;
+      rep.normalsLinearised = w.contact.allNormals;
       escalating = false;
       rep.iterations = nr.iterations;
       rep.residual = nr.residual;
@@ -402,8 +407,7 @@ StepReport advance(WorldState& w) {
     if (w.predict && nr.outcome == NewtonOutcome::Failed) {
       retried = true;
       ++rep.predictorRetries;
-      rep.message += (rep.message.empty() ? "" : "; ") + std::string("predictor off at t = ") +
-                     number(tTry) + ": " + nr.message;
+      noteFailure(rep, "predictor off", tTry, nr);
       continue;
     }
     w.dt = nextIncrement(tTry - w.time, nominal, st, judged);
@@ -426,8 +430,7 @@ StepReport advance(WorldState& w) {
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
                                           counted(st.maxCutbacks, "cutback") + ": " + nr.message +
                                           cutbackAdvice(w.scene, st, tTry - w.time));
-    rep.message += (rep.message.empty() ? "" : "; ") + std::string("cutback at t = ") +
-                   number(tTry) + ": " + nr.message;
+    noteFailure(rep, "cutback", tTry, nr);
   }
 
   if (++w.increment == st.increments) {

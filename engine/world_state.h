@@ -85,7 +85,6 @@ struct WorldState {
   // every fibre normal (one of its attempts failed with the loop's normals and converged
   // linearised), and the step where a linearised retry failed (no more retries there); -1: none.
   int linearisedStep = -1, escalationFailedStep = -1;
-  bool linearise = false;    // whether the attempt in progress linearises every fibre normal
 };
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }

@@ -400,6 +400,13 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
   // with loop B's normals and converges linearised (contact normal_update "auto").
   TempDir scratch("cli_normal_retry");
   fs::create_directories(scratch.path());
+  const auto run = [&](const nlohmann::json& scene, const std::string& name) {
+    writeFile(scratch / (name + ".json"), scene.dump());
+    const RunResult r =
+        runFibra({"run", scratch / (name + ".json"), "--out", scratch / name}, scratch);
+    REQUIRE_MESSAGE(r.status == 0, r.output);
+    return r.output;
+  };
   nlohmann::json j = {{"units", "mm-N-MPa"},
                       {"materials", {{{"name", "m"}, {"young_modulus", 4000}, {"poisson_ratio", 0.3}}}},
                       {"tables", {{"twist", {{0, 0}, {1, 0}, {2, 1.5707963267948966}}}}},
@@ -419,16 +426,13 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
         {{"type", "clamp"}, {"group", f + ".end"}, {"displacement", {0.004, 0, 0}},
          {"rotation", {{"axis", {1, 0, 0}}, {"centre", {2, 0, 0}}, {"angle", "twist"}}}});
   }
-  writeFile(scratch / "twist.json", j.dump());
-  const RunResult r = runFibra({"run", scratch / "twist.json", "--out", scratch / "out"}, scratch);
-  INFO(r.output);
-  REQUIRE(r.status == 0);
-  CHECK(countLines(r.output, R"(^  note: an attempt failed with loop B's normals and converged )"
+  const std::string twist = run(j, "twist");
+  CHECK(countLines(twist, R"(^  note: an attempt failed with loop B's normals and converged )"
                              R"(with every fibre normal linearised in Newton; the rest of the )"
                              R"(step keeps them \(contact.normal_update "auto")") == 1);
-  CHECK(countLines(r.output, R"(a failed attempt retried once with every fibre normal )"
+  CHECK(countLines(twist, R"(a failed attempt retried once with every fibre normal )"
                              R"(linearised \(kept to the step's end where it converges\))") == 1);
-  const auto history = readCsv(scratch / "out" + "/history.csv");
+  const auto history = readCsv(scratch / "twist" + "/history.csv");
   REQUIRE(history.size() == 9);
   const auto column = std::find(history[0].begin(), history[0].end(), "normal_retries");
   REQUIRE(column != history[0].end());
@@ -443,14 +447,11 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
                             true);
   beams["output"]["plots"] = nlohmann::json::array();
   beams["output"]["vtu"] = false;
-  writeFile(scratch / "beams.json", beams.dump());
-  const RunResult b = runFibra({"run", scratch / "beams.json", "--out", scratch / "beams"}, scratch);
-  INFO(b.output);
-  REQUIRE(b.status == 0);
-  CHECK(countLines(b.output, R"(^  note: a failed attempt, retried with every fibre normal )"
+  const std::string sliding = run(beams, "beams");
+  CHECK(countLines(sliding, R"(^  note: a failed attempt, retried with every fibre normal )"
                              R"(linearised in Newton, failed again; the step goes on with loop )"
                              R"(B's normals)") == 1);
   // The increment's failed attempts, each under what followed it: the retry, then cutbacks.
-  CHECK(countLines(b.output, R"(^  failed attempts \(what followed at t: why\): every fibre )"
+  CHECK(countLines(sliding, R"(^  failed attempts \(what followed at t: why\): every fibre )"
                              R"(normal linearised at t = 0\.04: .*; cutback at t = 0\.04: )") == 1);
 }
