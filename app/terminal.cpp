@@ -280,6 +280,31 @@ std::string torquedStringLine(const World& world) {
                 worst->torque, world.scene().fibres[worst->fibre].name.c_str(), worst->radius);
 }
 
+// The fibres on a law other than Saint Venant-Kirchhoff (materials' `law`), as a line.
+std::string materialLawLine(const World& world) {
+  std::vector<Index> fibres;
+  for (Index f = 0; f < world.fibres().fibres(); ++f)
+    if (world.scene().materials[world.fibres().material[f]].law != MaterialLaw::SaintVenantKirchhoff)
+      fibres.push_back(f);
+  if (fibres.empty()) return "";
+  return format("  sections: neo-Hookean for %s (integrated point by point at every iteration, "
+                "enhanced transverse strains)\n",
+                fibreList(world, fibres).c_str());
+}
+
+// The steps with a viscous continuation, and when it acts, as a line.
+std::string continuationLine(const SceneDef& s) {
+  std::string list;
+  for (size_t i = 0; i < s.steps.size(); ++i) {
+    const StepDef& st = s.steps[i];
+    if (!(st.damping > 0)) continue;
+    list += format("%sstep %zu damping %g %s", list.empty() ? "" : ", ", i + 1, st.damping,
+                   st.dampingFrom == DampingFrom::Start ? "from its start"
+                                                        : "from its first failed increment");
+  }
+  return list.empty() ? "" : "  viscous continuation: " + list + "\n";
+}
+
 // The scene's linear solver settings (a WorldDef may override the strategy: engine/world.h).
 std::string solverLine(const SceneDef& s) {
   const SolverDef& v = s.solver;
@@ -322,6 +347,8 @@ std::string describeProblem(const World& world, const std::string& scene, int th
                 f.elements(), 9 * f.nodes());
   out += format("  %zu steps, %d increments, t = 0 .. %g\n", s.steps.size(), increments,
                 s.steps.empty() ? 0.0 : s.steps.back().endTime);
+  out += materialLawLine(world);
+  out += continuationLine(s);
   out += contactLines(world);
   out += freeSpinLine(world);
   out += torquedStringLine(world);
@@ -401,6 +428,11 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
     std::fprintf(stderr,
                  "  note: loop B's normal updates diverged: the increment restarted with the "
                  "frictionless parallel normals linearised in Newton (contact.normal_update)\n");
+  if (r.dampedFrom >= 0)
+    std::fprintf(stderr,
+                 "  note: the increment failed without the viscous continuation; it acts from "
+                 "t = %g to the step's end (damping_from \"failure\", damping %g)\n",
+                 r.dampedFrom, st.damping);
   if (st.damping > 0 && r.increment == st.increments && r.viscousForce > 1e-2)
     std::fprintf(stderr,
                  "  note: the step ends %.3g of the reference force away from static equilibrium "

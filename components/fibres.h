@@ -47,13 +47,20 @@ struct FibreStore {
   Index elements() const { return Index(elementFibre.size()); }
 };
 
-// Per-material constants (Saint Venant-Kirchhoff).
+// The hyperelastic law of a material's sections (systems/beam_section.h, systems/section_law.h).
+enum class MaterialLaw {
+  SaintVenantKirchhoff,  // W quadratic in E: a constant section stiffness (the paper's)
+  NeoHookean             // compressible neo-Hookean: stable under large compression
+};
+
+// Per-material constants.
 struct MaterialStore {
   std::vector<std::string> name;
   std::vector<double> youngModulus;   // E, MPa
   std::vector<double> poissonRatio;   // nu, -
   std::vector<double> bendingFactor;  // scales the bending stiffness EI (paper Table 1: 0.12), -
   std::vector<double> torsionFactor;  // scales the torsion stiffness GJ, -
+  std::vector<MaterialLaw> law;       // the sections' law (Saint Venant-Kirchhoff by default)
 
   Index size() const { return Index(name.size()); }
 };

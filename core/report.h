@@ -142,6 +142,8 @@ struct StepReport {
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt
   double residual = 0;      // final relative residual
   double viscousForce = 0;  // |viscous continuation force on the free DOFs| / F_ref at the end
+  double dampedFrom = -1;   // damping_from "failure": the time from which the continuation acts,
+                            // in the increment where it came on; -1 elsewhere
   std::vector<NewtonRecord> history;  // the accepted attempt's iterations
   StepTimings timings;
   ContactReport contact;    // when the scene has contact or tools

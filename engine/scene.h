@@ -27,9 +27,13 @@ struct MaterialDef {
   double poissonRatio = 0.3;  // nu
   double bendingFactor = 1;   // scales EI (paper Table 1: 0.12)
   double torsionFactor = 1;   // scales GJ
+  MaterialLaw law = MaterialLaw::SaintVenantKirchhoff;  // the sections' hyperelastic law
 };
 
 enum class GeometryKind { Line, Polyline, Helix };
+
+// When a step's viscous continuation (`damping`) acts (StepDef::dampingFrom).
+enum class DampingFrom { Start, Failure };
 
 struct GeometryDef {
   GeometryKind kind = GeometryKind::Line;
@@ -133,6 +137,9 @@ struct StepDef {
   // q_n + dt (q_n - q_{n-1}) / dt_{n-1} on the free DOFs (engine/step_driver.cpp).
   bool predictor = true;
   double damping = 0;              // viscous continuation c, N/mm x pseudo-time per node (0: off)
+  // When the continuation acts: from the step's start, or from the first increment that fails
+  // without it after its cutbacks to the step's end (load control until then).
+  DampingFrom dampingFrom = DampingFrom::Start;
   int outputEvery = 1;             // write output every n converged increments (and the last)
   // Forced normals (paper section 5.2.1): unit direction D; zero: the normal rules (eq. 10).
   // During the step, between fibres of different contact classes whose levels differ at the

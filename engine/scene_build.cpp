@@ -35,6 +35,7 @@ void buildMaterials(WorldState& w) {
     w.materials.poissonRatio.push_back(m.poissonRatio);
     w.materials.bendingFactor.push_back(m.bendingFactor);
     w.materials.torsionFactor.push_back(m.torsionFactor);
+    w.materials.law.push_back(m.law);
   }
 }
 

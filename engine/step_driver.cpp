@@ -11,7 +11,9 @@
 //      attempt's size (bounded by the step's maxCutbacks) and retry; never accept a non-converged
 //      state. Where nothing the scene prescribes changes over the failed attempt and the step
 //      has no damping, a smaller attempt would repeat it exactly (a forced allowance changes
-//      with time: nothingPrescribedChanges): the step fails at once. The
+//      with time: nothingPrescribedChanges): the step fails at once; with damping_from
+//      "failure", there and after the last cutback, the viscous continuation comes on instead,
+//      for the rest of the step (dampingOn), and takes the increment again. The
 //      attempt size adapts (nextIncrement): it grows back after easy attempts, up to the
 //      nominal increment, and carries over to the next increment of the step, whose end is
 //      always reached exactly (frames and history rows stay on the nominal times);
@@ -173,6 +175,12 @@ double nextIncrement(double dt, double nominal, const StepDef& st, const NewtonR
   return dt * (nr.smallest > 1 ? 0.25 : 0.5);
 }
 
+// Whether the step's viscous continuation acts on its attempts now: from the step's start, or,
+// with damping_from "failure", once an increment of the step has failed without it.
+bool dampingOn(const WorldState& w, const StepDef& st) {
+  return st.damping > 0 && (st.dampingFrom == DampingFrom::Start || w.dampedStep == w.step);
+}
+
 // The trial starts from the last converged state; the continuation's c/dt for its size; the
 // step's forced normals (zero: the normal rules) for the detections and normal updates, the
 // overlap they allow at the attempt's end time tTry, A (t_end - tTry) / (t_end - t_start), and
@@ -187,7 +195,7 @@ void beginAttempt(WorldState& w, const StepDef& st, double tTry, double tStart) 
   w.contact.unstableNormals = false;
   setSymmetric(w, symmetricTangent(w));
   w.stabilisation.qStart = w.fibres.q;
-  w.stabilisation.viscous = st.damping / size;
+  w.stabilisation.viscous = dampingOn(w, st) ? st.damping / size : 0;
 }
 
 // The work of every force over the attempt that converged (systems/energy_balance.h), before
@@ -223,6 +231,18 @@ void discard(WorldState& w) {
   w.system.fext = w.converged.fext;
 }
 
+// Why fibre f's element could fold, and what to change (docs/METHOD.md "Folded elements").
+std::string foldCause(const WorldState& w, Index f) {
+  if (w.materials.law[w.fibres.material[f]] == MaterialLaw::SaintVenantKirchhoff)
+    return "a spurious state of the Saint Venant-Kirchhoff energy, which softens beyond 42% "
+           "compression; a fibre bent this tightly needs the material law \"neo_hookean\" and "
+           "axial integration \"full\"";
+  if (w.scene.fibres[f].integration.axial == AxialRule::Reduced)
+    return "the element is distorted between its axial integration points; axial integration "
+           "\"full\" leaves it no such mode";
+  return "the fibre is bent or twisted more tightly than its elements resolve; more elements";
+}
+
 // A converged state with a folded element is a spurious equilibrium of the material law
 // (systems/element_stretch.h): the attempt fails, and is cut.
 void rejectFolded(const WorldState& w, NewtonResult& r) {
@@ -232,10 +252,9 @@ void rejectFolded(const WorldState& w, NewtonResult& r) {
   r.outcome = NewtonOutcome::Failed;
   r.message = std::string("an element folded: ") +
               (c.volume ? "section volume ratio " : "axial stretch ") + number(c.smallest) +
-              " in element " +
-              std::to_string(c.element - w.fibres.firstElement[f]) + " of fibre '" +
-              w.fibres.name[f] + "' (below " + number(kFoldedStretch) +
-              ": a spurious state of the Saint Venant-Kirchhoff energy)";
+              " in element " + std::to_string(c.element - w.fibres.firstElement[f]) +
+              " of fibre '" + w.fibres.name[f] + "' (below " + number(kFoldedStretch) + ": " +
+              foldCause(w, f) + ")";
 }
 
 // Where the free residual is largest (Progress::largest).
@@ -365,6 +384,7 @@ StepReport advance(WorldState& w) {
   };
   const double nominal = (st.endTime - tStart) / st.increments;
   if (w.increment == 0 || !(w.dt > 0)) w.dt = nominal;
+  int spent = 0;  // cutbacks before the continuation came on (damping_from "failure")
   bool retried = false;  // a predicted attempt failed: the increment goes on without the predictor
   bool escalating = false;  // the attempt retries a failed one with every fibre normal linearised
   NewtonResult beforeRetry;  // the failed attempt that the retry repeats
@@ -413,7 +433,20 @@ StepReport advance(WorldState& w) {
     w.dt = nextIncrement(tTry - w.time, nominal, st, judged);
     const bool cancelled = nr.outcome == NewtonOutcome::Cancelled;
     if (cancelled) return stop(StepStatus::Cancelled, "cancelled");
-    if (!(st.damping > 0) && nothingPrescribedChanges(w.scene, st, w.time, tTry))
+    const bool stuck = !dampingOn(w, st) && nothingPrescribedChanges(w.scene, st, w.time, tTry);
+    if ((stuck || rep.cutbacks - spent >= st.maxCutbacks) && st.damping > 0 && !dampingOn(w, st)) {
+      // damping_from "failure": load control cannot go on; the continuation takes the
+      // increment again from its last converged state, at the nominal size, and acts to the
+      // step's end with cutbacks of its own
+      w.dampedStep = w.step;
+      rep.dampedFrom = w.time;
+      spent = rep.cutbacks;
+      w.dt = nominal;
+      retried = false;
+      noteFailure(rep, "damping on", tTry, nr);
+      continue;
+    }
+    if (stuck)
       return stop(StepStatus::Failed,
                   "increment to t = " + number(t1) + " failed: " + nr.message +
                       "; a smaller increment would repeat this attempt exactly: nothing the "
@@ -426,7 +459,7 @@ StepReport advance(WorldState& w) {
                                         "removes in equal parts"
                                       : "") +
                       ")");
-    if (++rep.cutbacks > st.maxCutbacks)
+    if (++rep.cutbacks - spent > st.maxCutbacks)
       return stop(StepStatus::Failed, "increment to t = " + number(t1) + " failed after " +
                                           counted(st.maxCutbacks, "cutback") + ": " + nr.message +
                                           cutbackAdvice(w.scene, st, tTry - w.time));

@@ -85,6 +85,9 @@ struct WorldState {
   // every fibre normal (one of its attempts failed with the loop's normals and converged
   // linearised), and the step where a linearised retry failed (no more retries there); -1: none.
   int linearisedStep = -1, escalationFailedStep = -1;
+  // Step `damping_from` "failure": the step whose viscous continuation is on (an increment of it
+  // failed without), -1: none.
+  int dampedStep = -1;
 };
 
 inline bool hasContact(const WorldState& w) { return w.contact.tools || w.contact.fibres; }

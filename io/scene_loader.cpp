@@ -18,13 +18,18 @@ using namespace json_reader;
 
 MaterialDef readMaterial(const Json& j, const std::string& path) {
   const Fields f(j, path,
-                 {"name", "young_modulus", "poisson_ratio", "bending_factor", "torsion_factor"});
+                 {"name", "young_modulus", "poisson_ratio", "bending_factor", "torsion_factor",
+                  "law"});
   MaterialDef m;
   m.name = f.string("name");
   m.youngModulus = f.number("young_modulus");
   m.poissonRatio = f.number("poisson_ratio", m.poissonRatio);
   m.bendingFactor = f.number("bending_factor", m.bendingFactor);
   m.torsionFactor = f.number("torsion_factor", m.torsionFactor);
+  m.law = f.choice("law",
+                   {{"saint_venant_kirchhoff", MaterialLaw::SaintVenantKirchhoff},
+                    {"neo_hookean", MaterialLaw::NeoHookean}},
+                   m.law);
   return m;
 }
 
@@ -128,7 +133,7 @@ StepDef readStep(const Json& j, const std::string& path) {
   const Fields f(j, path,
                  {"name", "end_time", "increments", "max_iterations", "force_tolerance",
                   "increment_tolerance", "max_cutbacks", "line_search", "predictor", "damping",
-                  "output_every", "forced_normals", "friction_factor"});
+                  "damping_from", "output_every", "forced_normals", "friction_factor"});
   StepDef s;
   s.name = f.string("name", s.name);
   s.endTime = f.number("end_time", s.endTime);
@@ -140,6 +145,9 @@ StepDef readStep(const Json& j, const std::string& path) {
   s.lineSearch = f.boolean("line_search", s.lineSearch);
   s.predictor = f.boolean("predictor", s.predictor);
   s.damping = f.number("damping", s.damping);
+  s.dampingFrom = f.choice("damping_from",
+                           {{"start", DampingFrom::Start}, {"failure", DampingFrom::Failure}},
+                           s.dampingFrom);
   s.outputEvery = f.integer("output_every", s.outputEvery);
   s.frictionFactor = f.number("friction_factor", s.frictionFactor);
   if (f.has("forced_normals"))

@@ -148,7 +148,11 @@ Names validateFibres(const SceneDef& s, const Names& materials) {
   for (size_t i = 0; i < s.fibres.size(); ++i) {
     const FibreDef& f = s.fibres[i];
     const std::string p = at("fibres", i);
-    resolve(materials, f.material, "material", p + ".material");
+    const MaterialDef& m = s.materials[resolve(materials, f.material, "material", p + ".material")];
+    if (m.law != MaterialLaw::SaintVenantKirchhoff && f.integration.section == SectionRule::Moments)
+      fail(p + ".integration.section",
+           "must be \"quadrature\" (the default): material '" + m.name +
+               "' has law \"neo_hookean\", whose energy is integrated point by point over the section");
     positive(f.radius, p + ".radius");
     withinScene(f.radius, p + ".radius");
     atLeast(f.elements, 1, p + ".elements");
@@ -375,6 +379,9 @@ void validateSteps(const SceneDef& s) {
     positive(st.incrementTolerance, p + ".increment_tolerance");
     inRange(st.maxCutbacks, 0, StepDef::kMaxCutbacks, p + ".max_cutbacks");
     nonNegative(st.damping, p + ".damping");
+    if (st.dampingFrom == DampingFrom::Failure && !(st.damping > 0))
+      fail(p + ".damping_from", "\"failure\" needs a `damping` > 0 on the step (the continuation "
+                                "it turns on), got damping " + num(st.damping));
     nonNegative(st.frictionFactor, p + ".friction_factor");
     atLeast(st.outputEvery, 1, p + ".output_every");
   }

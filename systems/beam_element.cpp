@@ -2,6 +2,9 @@
 
 #include "systems/beam_section.h"
 #include "systems/interpolation.h"
+#include "systems/section_law.h"
+
+#include <cmath>
 
 namespace fibra {
 namespace {
@@ -63,6 +66,20 @@ Mat15 vectorHessian(const Vec15v& v, const Vec15& sigma, const Mat15& D) {
   return H;
 }
 
+// The energy of point p at the generalised strains e, with sigma = dPi_p/de and, when `law` is
+// not null, D = d2Pi_p/de2 in *law: the constant form D_p, plus a nonlinear law's section
+// integral (then *D points to *law; for Saint Venant-Kirchhoff it stays at D_p, uncopied).
+double pointEnergy(const ElementPoints& pts, int p, const Vec15& e, Vec15& sigma,
+                   const Mat15** D, Mat15* law) {
+  sigma.noalias() = pts.D[p] * e;
+  double energy = 0.5 * e.dot(sigma);
+  if (D) *D = &pts.D[p];
+  if (pts.law[p] < 0) return energy;
+  if (D) *law = pts.D[p], *D = law;
+  return energy + addSectionLaw(pts.lawSections[pts.law[p]], pts.sectionPoints, e, sigma,
+                                D ? law : nullptr);
+}
+
 }  // namespace
 
 template <int Order>
@@ -75,10 +92,16 @@ double beamElement(const ElementPoints& pts, const ElementVector<Order>& q,
     const Interp<Order> T = interpolationMatrix<Order>(pts.z[p]);
     const Vec15v v = T * q;
     const Vec15 e = strainsOf(v, pts.eRef[p]);
-    const Vec15 sigma = pts.D[p] * e;
-    energy += 0.5 * e.dot(sigma);
+    Vec15 sigma;
+    const Mat15* D = nullptr;
+    Mat15 lawD;
+    energy += pointEnergy(pts, p, e, sigma, K ? &D : nullptr, &lawD);
+    if (!std::isfinite(energy)) {
+      f.setConstant(energy);
+      return energy;
+    }
     f.noalias() += T.transpose() * vectorForces(v, sigma);
-    if (K) K->noalias() += T.transpose() * vectorHessian(v, sigma, pts.D[p]) * T;
+    if (K) K->noalias() += T.transpose() * vectorHessian(v, sigma, *D) * T;
   }
   return energy;
 }
@@ -88,7 +111,8 @@ double beamElementEnergy(const ElementPoints& pts, const ElementVector<Order>& q
   double energy = 0;
   for (int p = 0; p < pts.count; ++p) {
     const Vec15 e = strainsOf(interpolationMatrix<Order>(pts.z[p]) * q, pts.eRef[p]);
-    energy += 0.5 * e.dot(pts.D[p] * e);
+    Vec15 sigma;
+    energy += pointEnergy(pts, p, e, sigma, nullptr, nullptr);
   }
   return energy;
 }

@@ -1,6 +1,7 @@
 #include "systems/beam_section.h"
 
 #include "systems/interpolation.h"
+#include "systems/section_law.h"
 
 #include <tbb/parallel_for.h>
 
@@ -139,18 +140,25 @@ Mat15 momentsStiffness(const Vec3 V[5], double R, const Constants& k) {
   return g.det * D;
 }
 
-Mat15 quadratureStiffness(const Vec3 V[5], double R, const Constants& k, int rings, int sectors) {
+// The polar rule: u = (r/R)^2 Gauss-Legendre on [0, 1] (r dr = R^2/2 du), equal angles; the
+// points with their strain maps, metrics and weights, and the section's mean strain map.
+struct Point {
+  Phi phi;
+  Metric g;
+  double w;
+  double x1, x2;
+};
+struct PolarRule {
+  std::vector<Point> pts;
+  Phi mean;
+};
+
+PolarRule polarRule(const Vec3 V[5], double R, int rings, int sectors) {
   static const auto P = monomialMaps();
-  // Polar rule: u = (r/R)^2 Gauss-Legendre on [0, 1] (r dr = R^2/2 du), equal angles.
   double zu[4], wu[4];
   gaussLegendre(rings, zu, wu);
-  struct Point {
-    Phi phi;
-    Metric g;
-    double w;
-  };
-  std::vector<Point> pts;
-  Phi mean = Phi::Zero();
+  PolarRule rule;
+  rule.mean.setZero();
   double volume = 0;
   for (int i = 0; i < rings; ++i) {
     const double r = R * std::sqrt(0.5 * (zu[i] + 1));
@@ -161,15 +169,42 @@ Mat15 quadratureStiffness(const Vec3 V[5], double R, const Constants& k, int rin
       Phi phi = Phi::Zero();
       for (int m = 0; m < kMonomials; ++m) phi += monomial(m, x1, x2) * P[m];
       const Metric g = metricAt(V, x1, x2);
-      mean += wr * g.det * phi;
+      rule.mean += wr * g.det * phi;
       volume += wr * g.det;
-      pts.push_back({phi, g, wr});
+      rule.pts.push_back({phi, g, wr, x1, x2});
     }
   }
-  mean /= volume;
+  rule.mean /= volume;
+  return rule;
+}
+
+Mat15 quadratureStiffness(const Vec3 V[5], double R, const Constants& k, int rings, int sectors) {
+  const PolarRule rule = polarRule(V, R, rings, sectors);
   Mat15 D = Mat15::Zero();
-  for (const Point& p : pts) addPoint(D, mean, p.phi, p.g, k, p.w * p.g.det);
+  for (const Point& p : rule.pts) addPoint(D, rule.mean, p.phi, p.g, k, p.w * p.g.det);
   return D;
+}
+
+// A neo-Hookean section (systems/section_law.h): the points of the polar rule go to `points`
+// (from section.first on), their weights with the axial weight w folded in. Poisson locking is
+// cured there by enhanced transverse strains, so no constant part is left: D_p is zero.
+void lawSection(const Vec3 V[5], double R, const Constants& k, const BeamIntegration& integration,
+                double w, LawSection& section, SectionPoint* points) {
+  const PolarRule rule = polarRule(V, R, integration.rings, integration.sectors);
+  section.mean = rule.mean;
+  section.scale = k.scale;
+  section.lambda = k.lambda;
+  section.mu = k.mu;
+  section.radius = R;
+  section.count = int(rule.pts.size());
+  double volume = 0, c1 = 0, c2 = 0;
+  for (int i = 0; i < section.count; ++i) {
+    const Point& p = rule.pts[i];
+    points[i] = {p.x1, p.x2, w * p.w * p.g.det, p.g.con.inverse(), p.g.con};
+    volume += points[i].w, c1 += points[i].w * p.x1, c2 += points[i].w * p.x2;
+  }
+  section.centre1 = c1 / volume;
+  section.centre2 = c2 / volume;
 }
 
 }  // namespace
@@ -180,6 +215,32 @@ Mat15 sectionStiffness(const Vec3 V[5], double R, double E, double nu, double fB
   if (rule.section == SectionRule::Moments) return w * momentsStiffness(V, R, k);
   return w * quadratureStiffness(V, R, k, rule.rings, rule.sectors);
 }
+
+namespace {
+
+// Where each element's law sections go: for a material that is not Saint Venant-Kirchhoff,
+// one LawSection per axial point and its rule's points, numbered in element order (so the stores
+// do not depend on the thread count).
+void placeLawSections(const FibreStore& fs, const MaterialStore& mats,
+                      const std::vector<BeamIntegration>& integration, BeamStore& beams) {
+  beams.law.assign(beams.z.size(), -1);
+  Index sections = 0, points = 0;
+  std::vector<Index> firstPoint;
+  for (Index e = 0; e < fs.elements(); ++e) {
+    const Index f = fs.elementFibre[e];
+    if (mats.law[fs.material[f]] == MaterialLaw::SaintVenantKirchhoff) continue;
+    for (int p = 0; p < beams.pointCount[e]; ++p) {
+      beams.law[beams.firstPoint[e] + p] = sections++;
+      firstPoint.push_back(points);
+      points += integration[f].rings * integration[f].sectors;
+    }
+  }
+  beams.lawSections.assign(sections, LawSection{});
+  for (Index i = 0; i < sections; ++i) beams.lawSections[i].first = firstPoint[i];
+  beams.sectionPoints.assign(points, SectionPoint{});
+}
+
+}  // namespace
 
 void buildBeamReference(const FibreStore& fs, const MaterialStore& mats,
                         const std::vector<BeamIntegration>& integration, BeamStore& beams) {
@@ -198,10 +259,13 @@ void buildBeamReference(const FibreStore& fs, const MaterialStore& mats,
   beams.z.resize(total);
   beams.D.resize(total);
   beams.eRef.resize(total);
+  placeLawSections(fs, mats, integration, beams);
   tbb::parallel_for(Index(0), ne, [&](Index e) {
     const Index f = fs.elementFibre[e];
     const Index mat = fs.material[f];
     const int order = fs.order[f], np = beams.pointCount[e];
+    const Constants k = constantsOf(mats.youngModulus[mat], mats.poissonRatio[mat],
+                                    mats.bendingFactor[mat], mats.torsionFactor[mat]);
     double zg[4], wg[4], N[3], dN[3];
     gaussLegendre(np, zg, wg);
     for (int p = 0; p < np; ++p) {
@@ -218,12 +282,19 @@ void buildBeamReference(const FibreStore& fs, const MaterialStore& mats,
       }
       const Index i = beams.firstPoint[e] + p;
       beams.z[i] = zg[p];
-      beams.D[i] = sectionStiffness(V, fs.radius[f], mats.youngModulus[mat], mats.poissonRatio[mat],
-                                    mats.bendingFactor[mat], mats.torsionFactor[mat],
-                                    integration[f], wg[p]);
-      for (int k = 0; k < kGenStrains; ++k) {
-        const StrainPair& sp = kStrainPairs[k];
-        beams.eRef[i](k) = sp.c * V[sp.a].dot(V[sp.b]);
+      if (const Index l = beams.law[i]; l >= 0) {
+        LawSection& section = beams.lawSections[l];
+        lawSection(V, fs.radius[f], k, integration[f], wg[p], section,
+                   &beams.sectionPoints[section.first]);
+        beams.D[i].setZero();
+      } else {
+        beams.D[i] = sectionStiffness(V, fs.radius[f], mats.youngModulus[mat],
+                                      mats.poissonRatio[mat], mats.bendingFactor[mat],
+                                      mats.torsionFactor[mat], integration[f], wg[p]);
+      }
+      for (int j = 0; j < kGenStrains; ++j) {
+        const StrainPair& sp = kStrainPairs[j];
+        beams.eRef[i](j) = sp.c * V[sp.a].dot(V[sp.b]);
       }
     }
   });

@@ -17,6 +17,7 @@ struct BeamSpec {
   double poisson = 0.3;
   double bendingFactor = 1;
   double torsionFactor = 1;
+  MaterialLaw law = MaterialLaw::SaintVenantKirchhoff;
   BeamIntegration integration{};
 };
 
@@ -27,7 +28,7 @@ inline double bendingStiffness(const BeamSpec& b) { return b.young * inertia(b) 
 // A straight beam along x from the origin, one material, one step of `increments`.
 inline SceneDef straightBeam(const BeamSpec& b, int increments = 1) {
   SceneDef s;
-  s.materials.push_back({"m", b.young, b.poisson, b.bendingFactor, b.torsionFactor});
+  s.materials.push_back({"m", b.young, b.poisson, b.bendingFactor, b.torsionFactor, b.law});
   FibreDef f;
   f.name = "b";
   f.material = "m";

@@ -22,6 +22,7 @@ struct OneFibre {
 
 OneFibre makeFibre(GeometryKind kind, int order, BeamIntegration integ, double fBend = 1) {
   OneFibre o;
+  o.mats.law = {MaterialLaw::SaintVenantKirchhoff};
   o.mats.name = {"m"};
   o.mats.youngModulus = {4000};
   o.mats.poissonRatio = {0.3};

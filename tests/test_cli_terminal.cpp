@@ -2,6 +2,7 @@
 // the header and summary, and a re-run into a used output directory.
 #include "fibra/version.h"
 #include "scene_test_util.h"
+#include "twisted_rod.h"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -454,4 +455,34 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
   // The increment's failed attempts, each under what followed it: the retry, then cutbacks.
   CHECK(countLines(sliding, R"(^  failed attempts \(what followed at t: why\): every fibre )"
                              R"(normal linearised at t = 0\.04: .*; cutback at t = 0\.04: )") == 1);
+}
+
+TEST_CASE("fibra check names neo-Hookean fibres and the continuation, run says when it comes on") {
+  // The twisted rod of tests/test_continuation.cpp (no contact), its step damped from the first
+  // increment that fails without: load control fails at the snap, and the continuation takes
+  // over there.
+  TempDir scratch("cli_damping_from");
+  std::filesystem::create_directories(scratch.path());
+  const std::string rod =
+      twistedRodScene(50, R"("damping": 0.01, "damping_from": "failure")");
+  writeFile(scratch / "rod.json", rod);
+  nlohmann::json soft = nlohmann::json::parse(rod);
+  soft["materials"][0]["law"] = "neo_hookean";
+  writeFile(scratch / "soft.json", soft.dump());
+  const RunResult c = runFibra({"check", scratch / "soft.json"}, scratch);
+  REQUIRE_MESSAGE(c.status == 0, c.output);
+  CHECK(countLines(c.output, R"(^  sections: neo-Hookean for 1 fibre \(rod\) \(integrated point )"
+                             R"(by point at every iteration, enhanced transverse strains\)$)") == 1);
+  CHECK(countLines(c.output, R"(^  viscous continuation: step 1 damping 0.01 from its first )"
+                             R"(failed increment$)") == 1);
+  const RunResult b = runFibra({"check", sourcePath("samples/bundle_squeeze.json")}, scratch);
+  CHECK(countLines(b.output, "sections:|viscous continuation:") == 0);
+  CHECK(countLines(runFibra({"check", scratch / "rod.json"}, scratch).output, "sections:") == 0);
+
+  const RunResult r = runFibra({"run", scratch / "rod.json", "--out", scratch / "out"}, scratch);
+  REQUIRE_MESSAGE(r.status == 0, r.output);
+  CHECK(countLines(r.output, R"(^  note: the increment failed without the viscous continuation; )"
+                             R"(it acts from t = [0-9.]+ to the step's end \(damping_from )"
+                             R"("failure", damping 0.01\)$)") == 1);
+  CHECK(countLines(r.output, R"(damping on at t = [0-9.]+: )") == 1);
 }

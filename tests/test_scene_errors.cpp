@@ -193,9 +193,23 @@ TEST_CASE("scene errors: out-of-range numbers") {
         "s.json: materials[0].poisson_ratio: must be in (-1, 0.5), got -1");
   CHECK(errorAfter([](Json& j) { j["materials"][0]["bending_factor"] = -0.1; }) ==
         "s.json: materials[0].bending_factor: must be >= 0, got -0.1");
+  CHECK(errorAfter([](Json& j) { j["materials"][0]["law"] = "hooke"; }) ==
+        "s.json: materials[0].law: unknown value \"hooke\" (expected one of: "
+        "saint_venant_kirchhoff, neo_hookean)");
+  CHECK(errorAfter([](Json& j) {
+          j["materials"][0]["law"] = "neo_hookean";
+          j["fibres"][0]["integration"] = {{"section", "moments"}};
+        }) == "s.json: fibres[0].integration.section: must be \"quadrature\" (the default): "
+              "material 'm' has law \"neo_hookean\", whose energy is integrated point by point "
+              "over the section");
   CHECK(errorAfter([](Json& j) {
           j["fibres"][0]["integration"] = {{"section", "quadrature"}, {"rings", 5}};
         }) == "s.json: fibres[0].integration.rings: must be 1 to 4, got 5");
+  CHECK(errorAfter([](Json& j) { j["steps"][0]["damping_from"] = "failure"; }) ==
+        "s.json: steps[0].damping_from: \"failure\" needs a `damping` > 0 on the step (the "
+        "continuation it turns on), got damping 0");
+  CHECK(errorAfter([](Json& j) { j["steps"][0]["damping_from"] = "later"; }) ==
+        "s.json: steps[0].damping_from: unknown value \"later\" (expected one of: start, failure)");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["increments"] = 0; }) ==
         "s.json: steps[0].increments: must be in [1, 1000000], got 0");
   CHECK(errorAfter([](Json& j) { j["steps"][0]["increments"] = 2000000000; }) ==

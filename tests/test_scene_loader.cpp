@@ -27,7 +27,7 @@ const char* const kFullScene = R"({
   "description": "every key",
   "units": "mm-N-MPa",
   "materials": [{"name": "glass", "young_modulus": 73000, "poisson_ratio": 0.25,
-                 "bending_factor": 0.12, "torsion_factor": 0.5}],
+                 "bending_factor": 0.12, "torsion_factor": 0.5, "law": "neo_hookean"}],
   "fibres": [
     {"name": "a", "material": "glass", "radius": 0.026, "elements": 5, "order": 1,
      "geometry": {"type": "polyline", "points": [[0, 0, 0], [1, 0, 0], [2, 1, 0]], "director": [0, 0, 1]},
@@ -51,7 +51,7 @@ const char* const kFullScene = R"({
   "steps": [
     {"name": "press", "end_time": 1, "increments": 4, "max_iterations": 20, "force_tolerance": 1e-9,
      "increment_tolerance": 1e-11, "max_cutbacks": 3, "line_search": true, "output_every": 2},
-    {"end_time": 2.5}
+    {"end_time": 2.5, "damping": 0.01, "damping_from": "failure"}
   ],
   "contact": {"proximity_distance": 0.06, "test_point_spacing": 0.01, "theta_cross_deg": 30,
               "theta_parallel_deg": 10, "self_contact": true, "self_contact_separation": 0.5,
@@ -81,6 +81,7 @@ TEST_CASE("scene loader: the cantilever sample loads to its SceneDef") {
   CHECK(s.materials[0].youngModulus == 4000);
   CHECK(s.materials[0].poissonRatio == 0.3);
   CHECK(s.materials[0].bendingFactor == 1);
+  CHECK(s.materials[0].law == MaterialLaw::SaintVenantKirchhoff);
   REQUIRE(s.fibres.size() == 1);
   const FibreDef& f = s.fibres[0];
   CHECK(f.name == "beam");
@@ -153,6 +154,7 @@ TEST_CASE("scene loader: every key of the format reaches its Def field") {
   CHECK(m.poissonRatio == 0.25);
   CHECK(m.bendingFactor == 0.12);
   CHECK(m.torsionFactor == 0.5);
+  CHECK(m.law == MaterialLaw::NeoHookean);
 
   const FibreDef& a = s.fibres.at(0);
   CHECK(a.order == 1);
@@ -200,6 +202,9 @@ TEST_CASE("scene loader: every key of the format reaches its Def field") {
   CHECK(st.outputEvery == 2);
   CHECK(s.steps.at(1).endTime == 2.5);
   CHECK(s.steps.at(1).increments == 1);
+  CHECK(s.steps.at(1).damping == 0.01);
+  CHECK(s.steps.at(1).dampingFrom == DampingFrom::Failure);
+  CHECK(st.dampingFrom == DampingFrom::Start);
 
   const ContactDef& k = s.contact;
   CHECK(k.enabled);  // a contact section turns contact on
