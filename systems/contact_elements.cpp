@@ -3,6 +3,7 @@
 #include "core/columns.h"
 #include "systems/contact_geometry.h"
 #include "systems/contact_normals.h"
+#include "systems/contact_sections.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -289,18 +290,24 @@ void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams
 
 // Where a zone's sections are sought: its intervals on I and J widened by Delta_prox, clamped to
 // the fibres (mm; one per zone, shared by its elements).
-struct Windows {
-  double aI, bI, aJ, bJ;
-};
+using Windows = SectionWindows;
 Windows searchWindows(const Intermediate& g, double delta) {
   const auto [aI, bI] = widened(g.fs, g.I, g.sI1, g.sI2, delta);
   const auto [aJ, bJ] = widened(g.fs, g.J, g.sJ1, g.sJ2, delta);
   return {aI, bI, aJ, bJ};
 }
 
+double centreDistance(const Intermediate& g, double sI, double sJ) {
+  return (centrelineAt(g.fs, g.cl, g.I, sI).x - centrelineAt(g.fs, g.cl, g.J, sJ).x).norm();
+}
+
 // The sections of I and J at zeta (eq. 8 and its degenerate cases) within the zone's windows;
-// `sep` is the self-contact separation (I == J).
-ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, double sep) {
+// `sep` is the self-contact separation (I == J). Where eq. 8 is well posed on both fibres, the
+// pair then moves to the nearest sections in its plane (systems/contact_sections.h) when that
+// brings the centres closer by more than `gain` (mm, p_max / 10 at the call sites): fibres that
+// face each other at their eq. 8 sections keep them bitwise.
+ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, double sep,
+                        double gain) {
   const FibreStore& fs = g.fs;
   const double sIz = g.sI(zeta), sJz = g.sJ(zeta);
   CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sIz), cJ = centrelineAt(fs, g.cl, g.J, sJz);
@@ -320,7 +327,13 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, do
   double aI = w.aI, bI = w.bI, aJ = w.aJ, bJ = w.bJ;  // narrowed below for self-contact
   const bool okI = planeCut(fs, g.cl, g.I, xInt, t, sIz, cI, aI, bI, out.sI);
   const bool okJ = planeCut(fs, g.cl, g.J, xInt, t, sJz, cJ, aJ, bJ, out.sJ);
-  if (okI && okJ) return out;
+  if (okI && okJ) {
+    double sI = out.sI, sJ = out.sJ;
+    if (nearestSectionsInPlane(fs, g.cl, g.I, g.J, xInt, t, w, sep, sI, sJ) &&
+        centreDistance(g, sI, sJ) < centreDistance(g, out.sI, out.sJ) - gain)
+      out.sI = sI, out.sJ = sJ;
+    return out;
+  }
   if (!okI) out.flags |= kFallbackSectionI;
   if (!okJ) out.flags |= kFallbackSectionJ;
   if (!okI && okJ) {  // self-contact: I stays the separation below J
@@ -331,12 +344,6 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, do
     if (aJ <= bJ) out.sJ = closestOnFibre(fs, g.cl, g.J, centrelineAt(fs, g.cl, g.I, out.sI).x, aJ, bJ).s;
   }
   return out;
-}
-
-// d2x0/ds2 of fibre f at s: twice the element polynomial's c, times (dz/ds)^2 (1/mm).
-Vec3 centrelineSecond(const FibreStore& fs, const CentrelineStore& cl, Index f, double s) {
-  const double dzds = 2 / elementLength(fs, f);
-  return 2 * cl.poly[locate(fs, f, s).element].c * (dzds * dzds);
 }
 
 // A point element of two different fibres that cross: its sections moved to the local minimum
@@ -394,7 +401,7 @@ bool pointZone(const Intermediate& g, const Windows& w, const ContactParams& p,
                ElementSides& sides) {
   if (g.I == g.J) return false;
   const double pMax = p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, g.I, g.J)];
-  sides = sectionsAt(g, 0.5, w, 0);
+  sides = sectionsAt(g, 0.5, w, 0, 0.1 * pMax);
   double lambda = 0;
   if (!closestSections(g, w, p.thetaParallel, sides, &lambda) || !(lambda > 0)) return false;
   const double h = std::min(elementLength(g.fs, g.I), elementLength(g.fs, g.J));
@@ -488,6 +495,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
   const Windows windows = searchWindows(g, proximityDistance(p, g.I, g.J));
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
+  const double gain = 0.1 * (p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, g.I, g.J)]);
   double total = 0;
   Index e = first;
   forEachElementAbscissa(g, zones.intermediateLength[z], p, [&](double zeta, double length) {
@@ -503,7 +511,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
                                : -1;
   std::vector<ElementSides> all(nc);
   for (e = first; e < first + nc; ++e)
-    all[e - first] = e == atCrossing ? crossing : sectionsAt(g, el.zeta[e], windows, sep);
+    all[e - first] = e == atCrossing ? crossing : sectionsAt(g, el.zeta[e], windows, sep, gain);
   if (nc > 1 && p.placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
   for (e = first; e < first + nc; ++e) {
     ElementSides sides = all[e - first];

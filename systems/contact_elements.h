@@ -34,7 +34,10 @@
 //     weights).
 //   sections: (x(s) - x_int(zeta_k)) . t_int(zeta_k) = 0 on I and on J                   (eq. 8)
 //     by Newton from sI(zeta_k) (resp. sJ) within the zone interval widened by Delta_prox
-//     (clamped to the fibre), bisection as safeguard; for a point element of two different
+//     (clamped to the fibre), bisection as safeguard; then, where both cuts are well posed,
+//     moved within the plane to the nearest pair (its midpoint kept in the plane) when that
+//     brings the centres closer by more than p_max / 10 (systems/contact_sections.h: a tilted
+//     plane cuts a fibre wound round another away from where they touch); for a point element of two different
 //     fibres then moved to the local minimum of the centreline distance |x_I(sI) - x_J(sJ)|
 //     near them (Newton in (sI, sJ), kept when it converges inside both widened intervals to a
 //     minimum and the fibres make more than theta_parallel there): on curved crossings the

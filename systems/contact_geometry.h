@@ -93,6 +93,12 @@ inline Vec3 centrelineTangent(const FibreStore& fs, const CentrelineStore& cl, I
   return 0.5 * dzds * ((L.b + 2 * L.c) + (R.b - 2 * R.c));
 }
 
+// d2x0/ds2 of fibre f at s: twice the element polynomial's c, times (dz/ds)^2 (1/mm).
+inline Vec3 centrelineSecond(const FibreStore& fs, const CentrelineStore& cl, Index f, double s) {
+  const double dzds = 2 / elementLength(fs, f);
+  return 2 * cl.poly[locate(fs, f, s).element].c * (dzds * dzds);
+}
+
 // The section of fibre f at s from the nodes of q (sectionOf), dx0/ds by the node rule above.
 inline Section contactSection(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s) {
   const Index node = interiorNodeAt(fs, f, s);

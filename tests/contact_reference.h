@@ -312,6 +312,51 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       if (I == J) a = std::max(a, e.sI + sep);
       if (a <= b) closest(fs, q, J, at(fs, q, I, e.sI).x0, a, b, e.sJ);
     }
+    // Both cuts well posed: the pair moved, within the eq. 8 plane (its midpoint kept on it), to
+    // the local minimum of |x_I(a) - x_J(b)|, by Newton on the Lagrangian's stationarity
+    // [d . t_I + l/2 t_I . t, -d . t_J + l/2 t_J . t, c] with its (a, b) columns by central
+    // differences; steps limited to h / 4; kept when it converges inside both brackets (and the
+    // self-contact separation) to a minimum along the plane and brings the centres closer by more
+    // than p_max / 10 (systems/contact_sections.h).
+    if (okI && okJ && !from) {
+      const auto [aI, bI] = bracket(I, z.sI1, z.sI2);
+      const auto [aJ, bJ] = bracket(J, z.sJ1, z.sJ2);
+      const double h = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
+      const double eps = 1e-6 * h;
+      const auto stationarity = [&](double a, double b, double l) {
+        const Section A = at(fs, q, I, a), B = at(fs, q, J, b);
+        const Vec3 d = A.x0 - B.x0;
+        return Eigen::Vector3d(d.dot(A.dx0ds) + 0.5 * l * A.dx0ds.dot(t),
+                               -d.dot(B.dx0ds) + 0.5 * l * B.dx0ds.dot(t),
+                               (0.5 * (A.x0 + B.x0) - x).dot(t));
+      };
+      const auto distance = [&](double a, double b) { return (at(fs, q, I, a).x0 - at(fs, q, J, b).x0).norm(); };
+      double a = e.sI, b = e.sJ, l = 0;
+      {
+        const Section A = at(fs, q, I, a), B = at(fs, q, J, b);
+        const Vec3 d = A.x0 - B.x0;
+        const Eigen::Vector2d gc(0.5 * A.dx0ds.dot(t), 0.5 * B.dx0ds.dot(t));
+        l = -Eigen::Vector2d(d.dot(A.dx0ds), -d.dot(B.dx0ds)).dot(gc) / gc.squaredNorm();
+      }
+      for (int it = 0; it < 20; ++it) {
+        Eigen::Matrix3d K;
+        K.col(0) = (stationarity(a + eps, b, l) - stationarity(a - eps, b, l)) / (2 * eps);
+        K.col(1) = (stationarity(a, b + eps, l) - stationarity(a, b - eps, l)) / (2 * eps);
+        K.col(2) = Eigen::Vector3d(0.5 * at(fs, q, I, a).dx0ds.dot(t), 0.5 * at(fs, q, J, b).dx0ds.dot(t), 0);
+        const Eigen::Vector2d tangent(K(2, 1), -K(2, 0));
+        if (!(tangent.dot(K.topLeftCorner<2, 2>() * tangent) > 0)) break;
+        Eigen::Vector3d step = -K.fullPivLu().solve(stationarity(a, b, l));
+        const double size = std::max(std::abs(step(0)), std::abs(step(1)));
+        if (size > 0.25 * h) step *= 0.25 * h / size;
+        a += step(0), b += step(1), l += step(2);
+        if (!(a >= aI && a <= bI && b >= aJ && b <= bJ) || (I == J && !(b - a >= sep))) break;
+        if (size <= 1e-10 * h) {
+          const double pMax = p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, I, J)];
+          if (distance(a, b) < distance(e.sI, e.sJ) - 0.1 * pMax) e.sI = a, e.sJ = b;
+          break;
+        }
+      }
+    }
     // A point element of two different fibres: both sections moved to the local minimum of the
     // centreline distance D(a, b) = |x_I(a) - x_J(b)|^2 / 2 from there, by Newton with D's
     // gradient [d . t_I, -d . t_J] from the sections and its Hessian by central differences of

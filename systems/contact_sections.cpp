@@ -1,0 +1,51 @@
+#include "systems/contact_sections.h"
+
+#include "systems/contact_geometry.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace fibra {
+
+bool nearestSectionsInPlane(const FibreStore& fs, const CentrelineStore& cl, Index I, Index J,
+                            const Vec3& xInt, const Vec3& t, const SectionWindows& w, double sep,
+                            double& sI, double& sJ) {
+  const double hI = elementLength(fs, I), hJ = elementLength(fs, J);
+  const double h = std::min(hI, hJ);
+  double uI = sI, uJ = sJ, lambda = 0;
+  for (int it = 0; it < 20; ++it) {
+    const CentrelinePoint cI = centrelineAt(fs, cl, I, uI), cJ = centrelineAt(fs, cl, J, uJ);
+    const Vec3 d = cI.x - cJ.x, &tI = cI.dxds, &tJ = cJ.dxds;
+    const Vec3 kI = centrelineSecond(fs, cl, I, uI), kJ = centrelineSecond(fs, cl, J, uJ);
+    const Eigen::Vector2d gc(0.5 * tI.dot(t), 0.5 * tJ.dot(t));  // grad c
+    const Eigen::Vector2d gf(d.dot(tI), -d.dot(tJ));             // grad f
+    if (it == 0) lambda = -gf.dot(gc) / gc.squaredNorm();
+    Eigen::Matrix2d H;  // Hessian of the Lagrangian f + lambda c
+    H << tI.dot(tI) + d.dot(kI) + lambda * 0.5 * kI.dot(t), -tI.dot(tJ),
+        -tI.dot(tJ), tJ.dot(tJ) - d.dot(kJ) + lambda * 0.5 * kJ.dot(t);
+    Eigen::Matrix3d K = Eigen::Matrix3d::Zero();
+    K.topLeftCorner<2, 2>() = H;
+    K.block<2, 1>(0, 2) = gc;
+    K.block<1, 2>(2, 0) = gc.transpose();
+    const Eigen::Vector3d r(gf(0) + lambda * gc(0), gf(1) + lambda * gc(1),
+                            (0.5 * (cI.x + cJ.x) - xInt).dot(t));
+    const Eigen::Vector2d z(gc(1), -gc(0));  // c's tangent in (sI, sJ)
+    if (!(z.dot(H * z) > 0)) return false;    // not a minimum along the plane
+    Eigen::Vector3d step = K.partialPivLu().solve(-r);
+    if (!step.allFinite()) return false;
+    const double size = std::max(std::abs(step(0)), std::abs(step(1)));
+    if (size > 0.25 * h) step *= 0.25 * h / size;
+    uI += step(0), uJ += step(1), lambda += step(2);
+    if (!(uI >= w.aI && uI <= w.bI && uJ >= w.aJ && uJ <= w.bJ)) return false;
+    if (I == J && !(uJ - uI >= sep)) return false;
+    if (size <= 1e-10 * h) {
+      sI = uI, sJ = uJ;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace fibra

@@ -1,0 +1,46 @@
+// Nearest sections in the eq. 8 plane: a contact element's pair of sections moved, within the
+// plane of its intermediate point, to the local minimum of their centreline distance.
+//
+// Reads  FibreStore (lengths, element counts), CentrelineStore (the element polynomials).
+// Writes nothing: a pure function of its arguments (called per contact element by
+//        systems/contact_elements.cpp).
+//
+// Eq. 8 cuts both fibres by the plane through x_int(zeta) normal to t_int(zeta). Where the
+// zone's linear map sI(zeta) <-> sJ(zeta) follows the fibres badly - a strand that wraps around
+// another (the ply of a plectoneme), a zone whose ends slide at different rates - the two cuts
+// are not facing: their centres lie apart along the fibres, the axial part of D = x_I - x_J is
+// taken out of the normal (systems/contact_normals.h), and the gap reports the distance of two
+// sections that do not touch while the fibres overlap nearby (measured on bench/plectoneme.json:
+// the brute-force overlap 4.8 p_max where the elements reported at most 1.2). The nearest pair
+// keeps what makes eq. 8 well posed on parallel fibres - the pair's midpoint stays in the
+// plane - and within it minimises the centreline distance:
+//   min f = |x_I(sI) - x_J(sJ)|^2 / 2   subject to   c = ((x_I + x_J) / 2 - x_int) . t = 0,
+// by Newton on the KKT system in (sI, sJ, lambda), with d = x_I - x_J, t_f = dx_f/ds:
+//   r = [d . t_I + lambda/2 t_I . t,  -d . t_J + lambda/2 t_J . t,  c]
+//   dr = [[t_I.t_I + d.x_I'' + lambda/2 x_I''.t,  -t_I.t_J,  t_I.t / 2],
+//         [-t_I.t_J,  t_J.t_J - d.x_J'' + lambda/2 x_J''.t,  t_J.t / 2],
+//         [t_I.t / 2,  t_J.t / 2,  0]]
+// from the eq. 8 pair (c = 0 there; lambda from least squares), each step limited to h / 4 of
+// the fibre. On straight parallel fibres the eq. 8 pair is this minimum already (moving the
+// sections apart in the plane lengthens d). Kept when Newton converges (|step| <= 1e-10 h) to a
+// minimum along the plane's constraint (the Hessian of the Lagrangian positive on c's tangent),
+// inside the windows [aI, bI], [aJ, bJ] (mm) and, on one fibre (I == J), with sJ - sI >= sep.
+#pragma once
+
+#include "components/contact_cache.h"
+#include "components/fibres.h"
+
+namespace fibra {
+
+struct SectionWindows {
+  double aI, bI, aJ, bJ;  // where the sections may lie on I and J, mm of arc length
+};
+
+// sI, sJ (mm): in, the eq. 8 sections; out, the nearest pair when found (true), unchanged
+// otherwise. xInt (mm) and t (unit) are the plane's point and normal; I == J for self-contact,
+// with sJ - sI >= sep (mm) kept.
+bool nearestSectionsInPlane(const FibreStore& fs, const CentrelineStore& cl, Index I, Index J,
+                            const Vec3& xInt, const Vec3& t, const SectionWindows& w, double sep,
+                            double& sI, double& sJ);
+
+}  // namespace fibra
