@@ -266,7 +266,7 @@ void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams
   }
   // Composite Simpson on each piece, in simpsonParts sub-pieces; |t_int| at a sub-piece's ends
   // taken just inside it (t_int kinks at a node).
-  const double sag = kSagShare * p.pairs.pMax[pairClass(p, g.I, g.J)];
+  const double sag = kSagShare * pairPMax(p, g.I, g.J);
   std::vector<double> sub{0.0};
   for (std::size_t k = 0; k < pieces; ++k) {
     const int m = simpsonParts(g, ends[k], ends[k + 1], sag);
@@ -400,7 +400,7 @@ bool closestSections(const Intermediate& g, const Windows& w, double thetaParall
 bool pointZone(const Intermediate& g, const Windows& w, const ContactParams& p,
                ElementSides& sides) {
   if (g.I == g.J) return false;
-  const double pMax = p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, g.I, g.J)];
+  const double pMax = pairPMax(p, g.I, g.J);
   sides = sectionsAt(g, 0.5, w, 0, 0.1 * pMax);
   double lambda = 0;
   if (!closestSections(g, w, p.thetaParallel, sides, &lambda) || !(lambda > 0)) return false;
@@ -495,7 +495,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
   const Windows windows = searchWindows(g, proximityDistance(p, g.I, g.J));
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
-  const double gain = 0.1 * (p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, g.I, g.J)]);
+  const double gain = 0.1 * pairPMax(p, g.I, g.J);
   double total = 0;
   Index e = first;
   forEachElementAbscissa(g, zones.intermediateLength[z], p, [&](double zeta, double length) {

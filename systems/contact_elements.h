@@ -37,8 +37,8 @@
 //     (clamped to the fibre), bisection as safeguard; then, where both cuts are well posed,
 //     moved within the plane to the nearest pair (its midpoint kept in the plane) when that
 //     brings the centres closer by more than p_max / 10 (systems/contact_sections.h: a tilted
-//     plane cuts a fibre wound round another away from where they touch); for a point element of two different
-//     fibres then moved to the local minimum of the centreline distance |x_I(sI) - x_J(sJ)|
+//     plane cuts a fibre wound round another away from where they touch); for a point
+//     element of two different fibres then moved to the local minimum of the centreline distance |x_I(sI) - x_J(sJ)|
 //     near them (Newton in (sI, sJ), kept when it converges inside both widened intervals to a
 //     minimum and the fibres make more than theta_parallel there): on curved crossings the
 //     eq. 8 plane misses the closest points when the zone's test point does (0.05 mm off at a

@@ -39,6 +39,11 @@ inline int pairClass(const ContactParams& p, Index I, Index J) {
   return c.pairOf[c.classOf[I] * c.classes + c.classOf[J]];
 }
 
+// p_max of the pair class of fibres I and J (mm); the scene-wide p_max without classes.
+inline double pairPMax(const ContactParams& p, Index I, Index J) {
+  return p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, I, J)];
+}
+
 // Level of fibre f at reference arc length s (mm): the last piece starting at or before s
 // (0 for a fibre without a level table).
 inline double levelAt(const ContactParams& p, Index f, double s) {

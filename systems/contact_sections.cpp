@@ -12,8 +12,7 @@ namespace fibra {
 bool nearestSectionsInPlane(const FibreStore& fs, const CentrelineStore& cl, Index I, Index J,
                             const Vec3& xInt, const Vec3& t, const SectionWindows& w, double sep,
                             double& sI, double& sJ) {
-  const double hI = elementLength(fs, I), hJ = elementLength(fs, J);
-  const double h = std::min(hI, hJ);
+  const double h = std::min(elementLength(fs, I), elementLength(fs, J));
   double uI = sI, uJ = sJ, lambda = 0;
   for (int it = 0; it < 20; ++it) {
     const CentrelinePoint cI = centrelineAt(fs, cl, I, uI), cJ = centrelineAt(fs, cl, J, uJ);

@@ -10,10 +10,11 @@
 // another (the ply of a plectoneme), a zone whose ends slide at different rates - the two cuts
 // are not facing: their centres lie apart along the fibres, the axial part of D = x_I - x_J is
 // taken out of the normal (systems/contact_normals.h), and the gap reports the distance of two
-// sections that do not touch while the fibres overlap nearby (measured on bench/plectoneme.json:
-// the brute-force overlap 4.8 p_max where the elements reported at most 1.2). The nearest pair
-// keeps what makes eq. 8 well posed on parallel fibres - the pair's midpoint stays in the
-// plane - and within it minimises the centreline distance:
+// sections that do not touch while the fibres overlap nearby (a fibre wound round a core, the
+// pair 0.2 mm apart along it: 0.0044 mm of overlap missed, tests/test_contact_sections.cpp; on
+// bench/plectoneme.json most of the under-report is sampling instead, docs/RESULTS.md). The
+// nearest pair keeps what makes eq. 8 well posed on parallel fibres - the pair's midpoint stays
+// in the plane - and within it minimises the centreline distance:
 //   min f = |x_I(sI) - x_J(sJ)|^2 / 2   subject to   c = ((x_I + x_J) / 2 - x_int) . t = 0,
 // by Newton on the KKT system in (sI, sJ, lambda), with d = x_I - x_J, t_f = dx_f/ds:
 //   r = [d . t_I + lambda/2 t_I . t,  -d . t_J + lambda/2 t_J . t,  c]

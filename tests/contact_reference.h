@@ -351,8 +351,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         a += step(0), b += step(1), l += step(2);
         if (!(a >= aI && a <= bI && b >= aJ && b <= bJ) || (I == J && !(b - a >= sep))) break;
         if (size <= 1e-10 * h) {
-          const double pMax = p.pairs.pMax.empty() ? p.pMax : p.pairs.pMax[pairClass(p, I, J)];
-          if (distance(a, b) < distance(e.sI, e.sJ) - 0.1 * pMax) e.sI = a, e.sJ = b;
+          if (distance(a, b) < distance(e.sI, e.sJ) - 0.1 * pairPMax(p, I, J)) e.sI = a, e.sJ = b;
           break;
         }
       }
