@@ -26,7 +26,7 @@ from centreline_overlap import section
 def frame_nodes(path):
     """[[x, y, z, g1..., g2...] per node] of the first fibre's polyline in an ascii frame."""
     try:
-        text = open(path).read()
+        text = open(path, "rb").read().decode("ascii", errors="replace")
     except OSError as e:
         raise SystemExit(f"{path}: {e.strerror}")
 
@@ -36,6 +36,8 @@ def frame_nodes(path):
             raise SystemExit(f"{path}: no ascii array {name} (run with --vtu-format ascii)")
         return m.group(1).split()
 
+    if len(set(block("fibre"))) > 1:
+        raise SystemExit(f"{path}: several fibres; this script measures a single rod")
     n = int(block("offsets")[0])
     points = re.search(r"<Points>.*?>(.*?)</DataArray>", text, re.S).group(1).split()
     p, g1, g2 = (list(map(float, a)) for a in (points, block("g1"), block("g2")))
@@ -75,6 +77,10 @@ def main():
         history = list(csv.DictReader(open(os.path.join(a.run, "history.csv"))))
     except OSError as e:
         raise SystemExit(f"{a.run}/history.csv: {e.strerror}")
+    frames = len([f for f in os.listdir(a.run) if re.fullmatch(r"result_\d{4}\.vtu", f)])
+    if frames != len(history) + 1:
+        raise SystemExit(f"{a.run}: {frames} frames for {len(history)} history rows; this script "
+                         "needs a frame per increment (\"output_every\": 1, the bench scene's)")
     formed = []
     print("t, active, reported p_max, smallest centreline distance mm, brute-force p_max, viscous")
     for k, h in enumerate(history, start=1):
