@@ -190,7 +190,7 @@ TEST_CASE("the fill measure of auto's rule: MUMPS's flops per non-zero of a dens
   REQUIRE(solver.factorise(ls, message));
   double exact = 0;
   for (int k = 1; k <= n; ++k) exact += 2.0 * (n - k) * (n - k) + (n - k);
-  CHECK(solver.stats().flopsPerEntry == doctest::Approx(exact / (n * n)).epsilon(0.05));
+  CHECK(solver.stats().flopsPerEntry == doctest::Approx(exact / (n * n)).epsilon(0.05).scale(0));
   CHECK(solver.stats().schwarzChoices == 0);
 }
 
