@@ -346,78 +346,24 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, do
   return out;
 }
 
-// A point element of two different fibres that cross: its sections moved to the local minimum
-// of the centreline distance near the eq. 8 ones, by Newton on
-//   F(sI, sJ) = [d . tI, -d . tJ] = 0,  d = xI(sI) - xJ(sJ), t = dx/ds,
-//   dF = [[tI . tI + d . xI'', -tI . tJ], [-tI . tJ, tJ . tJ - d . xJ'']]
-// (the paper's minimum-distance pairing for crossings, section 3.1.1). The eq. 8 plane through
-// the intermediate point cuts curved fibres away from their closest points when the zone's one
-// test point is not at them: at woven crossings the gap was measured 0.05 mm off, reporting
-// 0.65 p_max where the fibres overlapped by 9. Kept only when Newton converges inside both
-// widened intervals to a minimum (dF positive definite) and the fibres make more than
-// theta_parallel there (nearly parallel fibres have no well-posed closest pair); else the eq. 8
-// sections stay. True when they were moved; `curvature` (when given) then receives the smaller
-// eigenvalue of dF there (dimensionless: s in mm along fibres of unit stretch).
-bool closestSections(const Intermediate& g, const Windows& w, double thetaParallel,
+// A point element's sections moved to the closest sections near them (systems/contact_sections.h).
+bool closestSections(const Intermediate& g, const Windows& w, double thetaParallel, double sep,
                      ElementSides& sides, double* curvature = nullptr) {
-  const FibreStore& fs = g.fs;
-  const double h = std::min(elementLength(fs, g.I), elementLength(fs, g.J));
-  double sI = sides.sI, sJ = sides.sJ;
-  for (int it = 0; it < 20; ++it) {
-    const CentrelinePoint cI = centrelineAt(fs, g.cl, g.I, sI);
-    const CentrelinePoint cJ = centrelineAt(fs, g.cl, g.J, sJ);
-    const Vec3 d = cI.x - cJ.x, &tI = cI.dxds, &tJ = cJ.dxds;
-    const double a11 = tI.dot(tI) + d.dot(centrelineSecond(fs, g.cl, g.I, sI));
-    const double a22 = tJ.dot(tJ) - d.dot(centrelineSecond(fs, g.cl, g.J, sJ));
-    const double a12 = -tI.dot(tJ), det = a11 * a22 - a12 * a12;
-    if (!(a11 > 0 && det > 0)) return false;  // not a minimum
-    const double f1 = d.dot(tI), f2 = -d.dot(tJ);
-    const double dI = -(a22 * f1 - a12 * f2) / det, dJ = -(a11 * f2 - a12 * f1) / det;
-    sI += dI, sJ += dJ;
-    if (!(sI >= w.aI && sI <= w.bI && sJ >= w.aJ && sJ <= w.bJ)) return false;
-    if (std::abs(dI) + std::abs(dJ) <= 1e-10 * h) {
-      const Vec3 uI = centrelineAt(fs, g.cl, g.I, sI).dxds.normalized();
-      const Vec3 uJ = centrelineAt(fs, g.cl, g.J, sJ).dxds.normalized();
-      if (uI.cross(uJ).norm() <= std::sin(thetaParallel)) return false;
-      sides.sI = sI, sides.sJ = sJ;
-      if (curvature) *curvature = 0.5 * (a11 + a22) - std::hypot(0.5 * (a11 - a22), a12);
-      return true;
-    }
-  }
-  return false;
+  return closestSectionsNear(g.fs, g.cl, g.I, g.J, w, thetaParallel, sep, sides.sI, sides.sJ,
+                             curvature);
 }
 
-// A zone of two different fibres that cross is a point contact when the patch where their
-// surfaces can meet is shorter than the spacing of its eq. 7 elements. Near the closest points
-// the centreline distance grows as d = d0 + delta^T H delta / (2 d0) (H = dF above, delta the
-// offsets in sI and sJ), so a penetration p_max reaches out to |delta| = l with
-//   l = sqrt(2 (R_I + R_J) p_max / lambda_min(H)).
-// When 2 l is below the elements' spacing h_min / 2, they sample the patch once at most, at
-// sections up to h_min / 4 off the closest ones, and their gaps miss the overlap there (a flat
-// 2 x 2 plain weave of 40-element fibres: 22 p_max of overlap where they reported 5.8,
-// docs/CONTACT.md "Crossings in long zones"): the element nearest the closest points is then
-// moved onto them (`sides`); the others stay, and still catch the fibres where they slide.
-bool pointZone(const Intermediate& g, const Windows& w, const ContactParams& p,
-               ElementSides& sides) {
-  if (g.I == g.J) return false;
-  const double pMax = pairPMax(p, g.I, g.J);
-  sides = sectionsAt(g, 0.5, w, 0, 0.1 * pMax);
-  double lambda = 0;
-  if (!closestSections(g, w, p.thetaParallel, sides, &lambda) || !(lambda > 0)) return false;
-  const double h = std::min(elementLength(g.fs, g.I), elementLength(g.fs, g.J));
-  const double l = std::sqrt(2 * (g.fs.radius[g.I] + g.fs.radius[g.J]) * pMax / lambda);
-  return 2 * l < 0.5 * h;
-}
-
-// The element of a point zone that goes to the closest points: the one whose zeta is nearest
-// theirs (zeta of sI on I's interval, or of sJ where J's interval is the longer).
+// The element of a point zone that goes to the closest points: among those not `taken`, the one
+// whose zeta is nearest theirs (zeta of sI on I's interval, or of sJ where J's interval is the
+// longer); -1 when all are taken.
 Index nearestElement(const Intermediate& g, const ContactElementStore& el, Index first, Index nc,
-                     const ElementSides& closest) {
+                     const ElementSides& closest, const std::vector<char>& taken) {
   const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
   const double zeta = onI ? (closest.sI - g.sI1) / g.dI : (closest.sJ - g.sJ1) / g.dJ;
-  Index best = first;
-  for (Index e = first + 1; e < first + nc; ++e)
-    if (std::abs(el.zeta[e] - zeta) < std::abs(el.zeta[best] - zeta)) best = e;
+  Index best = -1;
+  for (Index e = first; e < first + nc; ++e)
+    if (!taken[e - first] && (best < 0 || std::abs(el.zeta[e] - zeta) < std::abs(el.zeta[best] - zeta)))
+      best = e;
   return best;
 }
 
@@ -427,7 +373,6 @@ void particlesWithEndFaces(const FibreStore& fs, const Intermediate& g, const El
                            const Section& I, const Section& J, double xiI[2], double xiJ[2],
                            std::uint8_t& flags) {
   particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
-  if (g.I == g.J) return;
   double xiE[2];
   if (endFaceParticle(fs, g.I, sides.sI, I, J.x0, fs.radius[g.I], xiE)) {
     xiI[0] = xiE[0], xiI[1] = xiE[1];
@@ -452,6 +397,72 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
   particles(I, J, RI, RJ, eqI, eqJ, flags);
   if (!okI) xiI[0] = eqI[0], xiI[1] = eqI[1];
   if (!okJ) xiJ[0] = eqJ[0], xiJ[1] = eqJ[1];
+}
+
+// The minima of the centreline distance within a zone, where its elements go.
+// Where two fibres (or two strands of one) cross, the gap has an isolated minimum; near it the
+// centreline distance grows as d = d0 + delta^T H delta / (2 d0) (H = dF of closestSections,
+// delta the offsets in sI and sJ), so a penetration p_max reaches out to |delta| = l with
+//   l = sqrt(2 (R_I + R_J) p_max / lambda_min(H)).
+// Long zones: where 2 l is below the elements' spacing h_min / 2, they sample the patch once at
+// most, at sections up to h_min / 4 off the closest ones, and their gaps miss the overlap there
+// (a flat 2 x 2 plain weave of 40-element fibres: 22 p_max of overlap where they reported 5.8,
+// docs/CONTACT.md "Crossings in long zones"): each such narrow minimum takes the nearest
+// element (the others stay, and still catch the fibres where they slide).
+// Point zones (one element): a strand bent round the other (a tight loop crossing itself, a
+// fibre wrapped over a crossing) comes closest to it at two or more places a few hundredths of a
+// mm apart. One element at one of them lets the solve push the strands apart there and through
+// each other at the other, and the next detection's element jumps there (the plectoneme's loop
+// at t = 0.735: 12 p_max at one, 4.6 at the other, by turns, until the increment failed). Every
+// minimum whose centres lie within R_I + R_J + 2 p_max (that touches, or nearly) then carries an
+// element of its own, with L_int / n, when there are two or more.
+// The minima: closestSections from the eq. 8 sections at zeta = 1/2 (first), then from the
+// zone's linear map (sI(zeta_k), sJ(zeta_k)), zeta_k = k / n, n = ceil(8 L_int / h_min) within
+// [4, 256] (point zones: every k; long zones, for their cost: the k where the fibres make more
+// than theta_parallel, as closestSections keeps no minimum elsewhere); distinct
+// (|dsI| + |dsJ| > h_min / 20); ordered along the zone.
+enum class Minima { Narrow, Touching };
+
+std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
+                                     const ContactParams& p, double sep, double L, Minima kind) {
+  const double h = std::min(elementLength(g.fs, g.I), elementLength(g.fs, g.J));
+  const double pMax = pairPMax(p, g.I, g.J), RR = g.fs.radius[g.I] + g.fs.radius[g.J];
+  const bool point = kind == Minima::Touching;
+  const int n = int(std::clamp(std::ceil(8 * L / h), 4.0, 256.0));
+  const double sinParallel = std::sin(p.thetaParallel);
+  std::vector<ElementSides> starts{sectionsAt(g, 0.5, w, sep, 0.1 * pMax)};
+  for (int k = 0; k <= n; ++k) {
+    const double zeta = double(k) / n, sI = g.sI(zeta), sJ = g.sJ(zeta);
+    const Vec3 tI = centrelineAt(g.fs, g.cl, g.I, sI).dxds.normalized();
+    const Vec3 tJ = centrelineAt(g.fs, g.cl, g.J, sJ).dxds.normalized();
+    if (point || tI.cross(tJ).norm() > sinParallel) starts.push_back({sI, sJ, 0});
+  }
+  std::vector<ElementSides> minima;
+  for (ElementSides sides : starts) {
+    double lambda = 0;
+    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda)) continue;
+    const bool keep = kind == Minima::Narrow
+                          ? lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * h
+                          : centreDistance(g, sides.sI, sides.sJ) < RR + 2 * pMax;
+    const bool known = std::any_of(minima.begin(), minima.end(), [&](const ElementSides& m) {
+      return std::abs(m.sI - sides.sI) + std::abs(m.sJ - sides.sJ) <= h / 20;
+    });
+    if (keep && !known) minima.push_back(sides);
+  }
+  const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
+  std::stable_sort(minima.begin(), minima.end(), [&](const ElementSides& a, const ElementSides& b) {
+    return onI ? (a.sI - g.sI1) / g.dI < (b.sI - g.sI1) / g.dI
+               : (a.sJ - g.sJ1) / g.dJ < (b.sJ - g.sJ1) / g.dJ;
+  });
+  return minima;
+}
+
+// A point zone's elements at its minima when it has two or more; else empty (one element).
+std::vector<ElementSides> pointZoneDips(const Intermediate& g, const Windows& w,
+                                        const ContactParams& p, double sep, double L) {
+  std::vector<ElementSides> dips = zoneMinima(g, w, p, sep, L, Minima::Touching);
+  if (dips.size() < 2) dips.clear();
+  return dips;
 }
 
 // A section at an interior node of its fibre lies in either element there; locate() takes the
@@ -490,34 +501,60 @@ void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) 
   }
 }
 
+// The zone's element count: the abscissas of forEachElementAbscissa, or a point zone's dips
+// when it has two or more (pointZoneDips).
+Index zoneElementCount(const Intermediate& g, double L, const ContactParams& p) {
+  Index count = 0;
+  forEachElementAbscissa(g, L, p, [&](double, double) { ++count; });
+  if (count != 1) return count;
+  const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
+  const auto dips = pointZoneDips(g, searchWindows(g, proximityDistance(p, g.I, g.J)), p, sep, L);
+  return dips.empty() ? 1 : Index(dips.size());
+}
+
 void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
                   const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
   const Windows windows = searchWindows(g, proximityDistance(p, g.I, g.J));
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
   const double gain = 0.1 * pairPMax(p, g.I, g.J);
+  const double L = zones.intermediateLength[z];
   double total = 0;
   Index e = first;
-  forEachElementAbscissa(g, zones.intermediateLength[z], p, [&](double zeta, double length) {
+  forEachElementAbscissa(g, L, p, [&](double zeta, double length) {
     el.zeta[e] = zeta;
     el.length[e++] = length;
     total += length;
   });
+  // A point zone counted with its dips (zoneElementCount): an element at each.
+  const std::vector<ElementSides> dips =
+      e - first == 1 && nc > 1 ? pointZoneDips(g, windows, p, sep, L) : std::vector<ElementSides>{};
+  for (std::size_t k = 0; k < dips.size(); ++k) {
+    const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
+    const double zeta = onI ? (dips[k].sI - g.sI1) / g.dI : (dips[k].sJ - g.sJ1) / g.dJ;
+    el.zeta[first + Index(k)] = std::isfinite(zeta) ? zeta : 0.5;
+    el.length[first + Index(k)] = L / double(nc);
+  }
   for (e = first; e < first + nc; ++e)
     el.weight[e] = total > 0 ? el.length[e] * double(nc) / total : 1.0;
-  ElementSides crossing{};
-  const Index atCrossing = nc > 1 && pointZone(g, windows, p, crossing)
-                               ? nearestElement(g, el, first, nc, crossing)
-                               : -1;
+  // A long zone's narrow minima (crossings) each to its nearest element.
+  std::vector<char> atCrossing(nc, !dips.empty());
   std::vector<ElementSides> all(nc);
+  if (nc > 1 && dips.empty())
+    for (const ElementSides& c : zoneMinima(g, windows, p, sep, L, Minima::Narrow)) {
+      const Index k = nearestElement(g, el, first, nc, c, atCrossing);
+      if (k < 0) break;
+      all[k - first] = c, atCrossing[k - first] = 1;
+    }
   for (e = first; e < first + nc; ++e)
-    all[e - first] = e == atCrossing ? crossing : sectionsAt(g, el.zeta[e], windows, sep, gain);
-  if (nc > 1 && p.placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
+    if (!dips.empty()) all[e - first] = dips[e - first];
+    else if (!atCrossing[e - first]) all[e - first] = sectionsAt(g, el.zeta[e], windows, sep, gain);
+  if (nc > 1 && dips.empty() && p.placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
   for (e = first; e < first + nc; ++e) {
     ElementSides sides = all[e - first];
     const bool closest =
-        e == atCrossing ||
-        (nc == 1 && g.I != g.J && closestSections(g, windows, p.thetaParallel, sides));
+        atCrossing[e - first] ||
+        (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides));
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];
@@ -569,9 +606,7 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
       const Intermediate g = geometry(z);
       const double L = intermediateLength(g);
       zones.intermediateLength[z] = L;
-      Index count = 0;
-      forEachElementAbscissa(g, L, params, [&](double, double) { ++count; });
-      zones.elementCount[z] = count;
+      zones.elementCount[z] = zoneElementCount(g, L, params);
     }
   });
   Index total = 0;

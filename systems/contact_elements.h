@@ -38,17 +38,31 @@
 //     moved within the plane to the nearest pair (its midpoint kept in the plane) when that
 //     brings the centres closer by more than p_max / 10 (systems/contact_sections.h: a tilted
 //     plane cuts a fibre wound round another away from where they touch); for a point
-//     element of two different fibres then moved to the local minimum of the centreline distance |x_I(sI) - x_J(sJ)|
+//     element then moved to the local minimum of the centreline distance |x_I(sI) - x_J(sJ)|
 //     near them (Newton in (sI, sJ), kept when it converges inside both widened intervals to a
-//     minimum and the fibres make more than theta_parallel there): on curved crossings the
-//     eq. 8 plane misses the closest points when the zone's test point does (0.05 mm off at a
-//     woven crossing, reporting 0.65 p_max where the fibres overlapped by 9 p_max);
+//     minimum, the fibres make more than theta_parallel there and, in self-contact, sJ - sI is
+//     at least the separation): on curved crossings the eq. 8 plane misses the closest points
+//     when the zone's test point does (0.05 mm off at a woven crossing, reporting 0.65 p_max
+//     where the fibres overlapped by 9 p_max);
 //   particles: on each section, the outline point x0 + xi1 g1 + xi2 g2, |xi| = R, in the
 //     direction of the other section's centre projected onto span(g1, g2)        (eq. 9, Fig. 4).
-//   Flat ends (two different fibres): when a section is an end of its fibre and the other
-//     section's centre lies beyond that end's plane (by more than 1e-9 R), the particle is the
-//     point of the end face closest to that centre, xi = m clamped to |xi| <= R, G m the
-//     projection of the centre onto the section plane; the other particle is the outline point
+//   Self-contact (I == J) takes every rule here, the crossings' and the ends' included, with
+//     sJ >= sI + separation: a fibre that crosses over itself is a crossing of two strands, and
+//     its end touches its own side as another fibre's would (without them a loop crossing over
+//     itself at its symmetry reported none of its 3.7e-4 mm overlap, and a hooked end none of
+//     its 3e-4 mm: tests/test_contact_minima.cpp).
+//   Minima of a zone: the local minima of the centreline distance, by the Newton above from the
+//     eq. 8 sections at zeta = 1/2 and from the zone's linear map at zeta = k / n (n = ceil(8
+//     L_int / h_min) in [4, 256]; long zones only where the fibres cross, |t_I x t_J| >
+//     sin theta_parallel). A long zone's narrow ones (the patch a penetration p_max spans
+//     shorter than the element spacing) each take the nearest element; a point zone with two or
+//     more whose centres lie within R_I + R_J + 2 p_max has an element at each (L_int / n each):
+//     a strand bent round another more tightly than their distance comes closest to it twice,
+//     and one element at one minimum let the strands through at the other.
+//   Flat ends: when a section is an end of its fibre and the other section's centre lies beyond
+//     that end's plane (by more than 1e-9 R), the particle is the point of the end face closest
+//     to that centre, xi = m clamped to |xi| <= R, G m the projection of the centre onto the
+//     section plane; the other particle is the outline point
 //     facing it; N is normal to the other fibre's axis through it (kEndFaceI / kEndFaceJ,
 //     systems/contact_normals.h). So no contact exists past an end, and an end's face and rim
 //     touch the other fibre's side.

@@ -47,4 +47,33 @@ bool nearestSectionsInPlane(const FibreStore& fs, const CentrelineStore& cl, Ind
   return false;
 }
 
+bool closestSectionsNear(const FibreStore& fs, const CentrelineStore& cl, Index I, Index J,
+                         const SectionWindows& w, double thetaParallel, double sep, double& sI,
+                         double& sJ, double* curvature) {
+  const double h = std::min(elementLength(fs, I), elementLength(fs, J));
+  double uI = sI, uJ = sJ;
+  for (int it = 0; it < 20; ++it) {
+    const CentrelinePoint cI = centrelineAt(fs, cl, I, uI), cJ = centrelineAt(fs, cl, J, uJ);
+    const Vec3 d = cI.x - cJ.x, &tI = cI.dxds, &tJ = cJ.dxds;
+    const double a11 = tI.dot(tI) + d.dot(centrelineSecond(fs, cl, I, uI));
+    const double a22 = tJ.dot(tJ) - d.dot(centrelineSecond(fs, cl, J, uJ));
+    const double a12 = -tI.dot(tJ), det = a11 * a22 - a12 * a12;
+    if (!(a11 > 0 && det > 0)) return false;  // not a minimum
+    const double f1 = d.dot(tI), f2 = -d.dot(tJ);
+    const double dI = -(a22 * f1 - a12 * f2) / det, dJ = -(a11 * f2 - a12 * f1) / det;
+    uI += dI, uJ += dJ;
+    if (!(uI >= w.aI && uI <= w.bI && uJ >= w.aJ && uJ <= w.bJ)) return false;
+    if (I == J && !(uJ - uI >= sep)) return false;  // self-contact: apart by the separation
+    if (std::abs(dI) + std::abs(dJ) <= 1e-10 * h) {
+      const Vec3 vI = centrelineAt(fs, cl, I, uI).dxds.normalized();
+      const Vec3 vJ = centrelineAt(fs, cl, J, uJ).dxds.normalized();
+      if (vI.cross(vJ).norm() <= std::sin(thetaParallel)) return false;
+      sI = uI, sJ = uJ;
+      if (curvature) *curvature = 0.5 * (a11 + a22) - std::hypot(0.5 * (a11 - a22), a12);
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace fibra

@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <cstring>
 #include <numbers>
 #include <random>
@@ -136,6 +137,35 @@ struct Detected {
 inline void detect(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
                    Detected& d) {
   d.report = detectContacts(fs, q, p, d.cache, d.zones, d.el);
+}
+
+// A strand bent round a fibre (tests/test_contact_minima.cpp): I straight along x (R, elementsI
+// quadratic elements, x in [-1, 1]); J of 3 quadratic elements (reference length lengthJ, mm: the
+// element length that sets the zone's element spacing) in the plane x = y whose middle
+// element has the nodes (-w, -w, z0 + k), (0, 0, z0), (w, w, z0 + k), with k^2 = 16 (z0^2 - rho^2)
+// and w^2 = -k^2 / 2 - 2 k z0: its distance from I's axis has minima rho at xi = -+1/2 (s = 1.25 h
+// and 1.75 h on J, h = J's element length) and the ridge z0 at xi = 0; its outer elements lead
+// away along its end tangents. The state q (the fibres' directors those of the straight start).
+struct BentRound {
+  FibreStore fs;
+  Eigen::VectorXd q;
+  double w;  // mm
+};
+
+inline BentRound bentRound(double R, int elementsI, double lengthJ, double rho, double z0) {
+  BentRound b;
+  const double k = -4 * std::sqrt(z0 * z0 - rho * rho);
+  b.w = std::sqrt(-0.5 * k * k - 2 * k * z0);
+  add(b.fs, polylineFibre("i", R, elementsI, 2, {Vec3(-1, 0, 0), Vec3(1, 0, 0)}));
+  add(b.fs, polylineFibre("j", R, 3, 2, {Vec3(0, -lengthJ / 2, 0), Vec3(0, lengthJ / 2, 0)}));
+  b.q = b.fs.q;
+  const double w = b.w;
+  const Vec3 left(-w, -w, z0 + k), mid(0, 0, z0), right(w, w, z0 + k);
+  const Vec3 tLeft = Vec3(w, w, -2 * k).normalized(), tRight = Vec3(w, w, 2 * k).normalized();
+  const Vec3 nodes[7] = {left - 0.6 * tLeft, left - 0.3 * tLeft, left, mid,
+                         right, right + 0.3 * tRight, right + 0.6 * tRight};
+  for (int n = 0; n < 7; ++n) b.q.segment<3>(kNodeDofs * (b.fs.firstNode[1] + n)) = nodes[n];
+  return b;
 }
 
 // Detection parameters with every default derived from the fibres.

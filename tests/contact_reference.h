@@ -36,6 +36,7 @@ struct Element {
   double gap, theta;
   std::uint8_t fallback;  // section and tangent bits only (kFallbackSectionI/J, kFallbackTangent)
   bool ambiguous;         // several plane-cut roots: the pipeline's choice is not checked
+  bool dip = false;       // one of a point zone's several minima (length L_int / n)
 };
 
 struct Detection {
@@ -259,6 +260,47 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       }
     }
   }
+  // The local minimum of the centreline distance D(a, b) = |x_I(a) - x_J(b)|^2 / 2 from (a, b),
+  // by Newton with D's gradient [d . t_I, -d . t_J] from the sections and its Hessian by central
+  // differences of the gradient; kept (a, b moved, true) when it converges inside both brackets
+  // (the zone's intervals widened by Delta_prox), with the self-contact separation, at a
+  // minimum, with the fibres more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings");
+  // `curvature` receives the smaller eigenvalue of the Hessian there.
+  const auto bracketOf = [&](Index f, double s1, double s2) {
+    return std::pair{std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
+  };
+  const double sepIJ = I == J ? p.selfSeparation[I] : 0;
+  const auto closestPair = [&](double& sa, double& sb, double& curvature) {
+    const auto [aI, bI] = bracketOf(I, z.sI1, z.sI2);
+    const auto [aJ, bJ] = bracketOf(J, z.sJ1, z.sJ2);
+    const auto gradient = [&](double a, double b) {
+      const Section A = at(fs, q, I, a), B = at(fs, q, J, b);
+      const Vec3 d = A.x0 - B.x0;
+      return Eigen::Vector2d(d.dot(A.dx0ds), -d.dot(B.dx0ds));
+    };
+    const double h = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
+    const double eps = 1e-6 * h;
+    Eigen::Vector2d u(sa, sb);
+    for (int it = 0; it < 20; ++it) {
+      Eigen::Matrix2d H;
+      H.col(0) = (gradient(u(0) + eps, u(1)) - gradient(u(0) - eps, u(1))) / (2 * eps);
+      H.col(1) = (gradient(u(0), u(1) + eps) - gradient(u(0), u(1) - eps)) / (2 * eps);
+      H = 0.5 * (H + H.transpose()).eval();
+      if (!(H(0, 0) > 0 && H.determinant() > 0)) return false;
+      const Eigen::Vector2d step = -H.ldlt().solve(gradient(u(0), u(1)));
+      u += step;
+      if (!(u(0) >= aI && u(0) <= bI && u(1) >= aJ && u(1) <= bJ)) return false;
+      if (I == J && !(u(1) - u(0) >= sepIJ)) return false;  // self-contact: apart by the separation
+      if (step.lpNorm<1>() <= 1e-10 * h) {
+        const Vec3 uI = at(fs, q, I, u(0)).dx0ds.normalized(), uJ = at(fs, q, J, u(1)).dx0ds.normalized();
+        if (uI.cross(uJ).norm() <= std::sin(p.thetaParallel)) return false;
+        sa = u(0), sb = u(1);
+        curvature = H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
+        return true;
+      }
+    }
+    return false;
+  };
   // One element at zeta: eq. 8 sections (or, with `from`, that element's sections), the
   // closest points when `closestPoints`; `curvature` receives the smaller eigenvalue of the
   // distance's Hessian there (0 when Newton did not keep them).
@@ -356,40 +398,11 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         }
       }
     }
-    // A point element of two different fibres: both sections moved to the local minimum of the
-    // centreline distance D(a, b) = |x_I(a) - x_J(b)|^2 / 2 from there, by Newton with D's
-    // gradient [d . t_I, -d . t_J] from the sections and its Hessian by central differences of
-    // the gradient; kept when it converges inside both brackets, at a minimum, with the fibres
-    // more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings").
+    // A point element: both sections moved to the local minimum of the centreline distance
+    // from there (closestPair below).
     if (closestPoints && !from) {
-      const auto [aI, bI] = bracket(I, z.sI1, z.sI2);
-      const auto [aJ, bJ] = bracket(J, z.sJ1, z.sJ2);
-      const auto gradient = [&](double a, double b) {
-        const Section A = at(fs, q, I, a), B = at(fs, q, J, b);
-        const Vec3 d = A.x0 - B.x0;
-        return Eigen::Vector2d(d.dot(A.dx0ds), -d.dot(B.dx0ds));
-      };
-      const double h = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
-      const double eps = 1e-6 * h;
-      Eigen::Vector2d u(e.sI, e.sJ);
-      for (int it = 0; it < 20; ++it) {
-        Eigen::Matrix2d H;
-        H.col(0) = (gradient(u(0) + eps, u(1)) - gradient(u(0) - eps, u(1))) / (2 * eps);
-        H.col(1) = (gradient(u(0), u(1) + eps) - gradient(u(0), u(1) - eps)) / (2 * eps);
-        H = 0.5 * (H + H.transpose()).eval();
-        if (!(H(0, 0) > 0 && H.determinant() > 0)) break;
-        const Eigen::Vector2d step = -H.ldlt().solve(gradient(u(0), u(1)));
-        u += step;
-        if (!(u(0) >= aI && u(0) <= bI && u(1) >= aJ && u(1) <= bJ)) break;
-        if (step.lpNorm<1>() <= 1e-10 * h) {
-          const Vec3 uI = at(fs, q, I, u(0)).dx0ds.normalized(), uJ = at(fs, q, J, u(1)).dx0ds.normalized();
-          if (uI.cross(uJ).norm() > std::sin(p.thetaParallel)) {
-            e.sI = u(0), e.sJ = u(1);
-            curvature = H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
-          }
-          break;
-        }
-      }
+      double c = 0;
+      if (closestPair(e.sI, e.sJ, c)) curvature = c;
     }
     const Section sI = at(fs, q, I, e.sI), sJ = at(fs, q, J, e.sJ);
     const Vec3 tI = sI.dx0ds.normalized(), tJ = sJ.dx0ds.normalized();
@@ -414,7 +427,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       return true;
     };
     e.theta = std::acos(std::min(1.0, std::abs(tI.dot(tJ))));
-    if (I != J) {
+    {
       const auto point = [](const Section& c, const double xi[2]) { return Vec3(c.x0 + xi[0] * c.g1 + xi[1] * c.g2); };
       int side = 0;
       if (face(I, e.sI, sI, sJ.x0, e.xiI)) {
@@ -455,22 +468,57 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   std::vector<Element> out;
   double curvature = 0;
   for (auto [zeta, length] : placed)
-    out.push_back(element(zeta, length, placed.size() == 1 && I != J, nullptr, curvature));
-  // A crossing in a zone of several elements (docs/CONTACT.md "Crossings in long zones"): the
-  // closest points from the sections at zeta = 1/2; when the patch a penetration p_max spans
-  // there, 2 l with l = sqrt(2 (R_I + R_J) p_max / lambda_min) (mm), is shorter than the element
-  // spacing h_min / 2, the element whose zeta is nearest theirs takes them.
-  if (placed.size() > 1 && I != J) {
-    const Element mid = element(0.5, 0, true, nullptr, curvature);
-    const double hMin = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
-    const double pMax = p.pairs.pMax[pairClass(p, I, J)];
-    if (curvature > 0 && 2 * std::sqrt(2 * (fs.radius[I] + fs.radius[J]) * pMax / curvature) < 0.5 * hMin) {
-      const bool onI = std::abs(dI) >= std::abs(dJ);
-      const double zeta = onI ? (mid.sI - z.sI1) / dI : (mid.sJ - z.sJ1) / dJ;
-      std::size_t k = 0;
-      for (std::size_t c = 1; c < placed.size(); ++c)
-        if (std::abs(placed[c].first - zeta) < std::abs(placed[k].first - zeta)) k = c;
-      out[k] = element(placed[k].first, placed[k].second, true, &mid, curvature);
+    out.push_back(element(zeta, length, placed.size() == 1, nullptr, curvature));
+  // The zone's minima (docs/CONTACT.md 1.4, "Crossings in long zones" and "Point zones with
+  // several dips"): closestPair from the eq. 8 sections at zeta = 1/2 and from the linear map at
+  // zeta = k / n, n = ceil(8 L_int / h_min) in [4, 256] (point zones: every k; long zones: where
+  // the fibres make more than theta_parallel); distinct (|dsI| + |dsJ| > h_min / 20); kept in a
+  // point zone when the centres lie within R_I + R_J + 2 p_max, in a long zone when the patch a
+  // penetration p_max spans, 2 sqrt(2 (R_I + R_J) p_max / lambda_min), is shorter than h_min / 2.
+  const double pMax = p.pairs.pMax[pairClass(p, I, J)], RR = fs.radius[I] + fs.radius[J];
+  const bool point = placed.size() == 1;
+  const bool onI = std::abs(dI) >= std::abs(dJ);
+  const auto zetaOf = [&](const Element& m) { return onI ? (m.sI - z.sI1) / dI : (m.sJ - z.sJ1) / dJ; };
+  std::vector<Element> minima;
+  {
+    const int n = int(std::clamp(std::ceil(8 * L / hMin), 4.0, 256.0));
+    std::vector<Element> starts{element(0.5, 0, false, nullptr, curvature)};
+    for (int k = 0; k <= n; ++k) {
+      const double zeta = double(k) / n;
+      Element st{};
+      st.sI = (1 - zeta) * z.sI1 + zeta * z.sI2, st.sJ = (1 - zeta) * z.sJ1 + zeta * z.sJ2;
+      const Vec3 tI = at(fs, q, I, st.sI).dx0ds.normalized(), tJ = at(fs, q, J, st.sJ).dx0ds.normalized();
+      if (point || tI.cross(tJ).norm() > std::sin(p.thetaParallel)) starts.push_back(st);
+    }
+    for (Element st : starts) {
+      double lambda = 0;
+      if (!closestPair(st.sI, st.sJ, lambda)) continue;
+      const double d = (at(fs, q, I, st.sI).x0 - at(fs, q, J, st.sJ).x0).norm();
+      const bool keep = point ? d < RR + 2 * pMax
+                              : lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * hMin;
+      bool known = false;
+      for (const Element& m : minima) known = known || std::abs(m.sI - st.sI) + std::abs(m.sJ - st.sJ) <= hMin / 20;
+      if (keep && !known) minima.push_back(st);
+    }
+    std::stable_sort(minima.begin(), minima.end(), [&](const Element& a, const Element& b) { return zetaOf(a) < zetaOf(b); });
+  }
+  if (point && minima.size() >= 2) {  // an element at each, L_int / n each
+    out.clear();
+    for (const Element& m : minima) {
+      const double zeta = zetaOf(m);
+      out.push_back(element(std::isfinite(zeta) ? zeta : 0.5, L / double(minima.size()), false, &m, curvature));
+      out.back().dip = true;
+    }
+  } else if (!point) {  // each narrow minimum to the nearest element not yet taken
+    std::vector<char> taken(placed.size(), 0);
+    for (const Element& m : minima) {
+      const double zeta = zetaOf(m);
+      std::size_t k = placed.size();
+      for (std::size_t c = 0; c < placed.size(); ++c)
+        if (!taken[c] && (k == placed.size() || std::abs(placed[c].first - zeta) < std::abs(placed[k].first - zeta))) k = c;
+      if (k == placed.size()) break;
+      taken[k] = 1;
+      out[k] = element(placed[k].first, placed[k].second, true, &m, curvature);
     }
   }
   return out;
