@@ -415,7 +415,7 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
 // each other at the other, and the next detection's element jumps there (the plectoneme's loop
 // at t = 0.735: 12 p_max at one, 4.6 at the other, by turns, until the increment failed). Every
 // minimum whose centres lie within R_I + R_J + 2 p_max (that touches, or nearly) then carries an
-// element of its own, with L_int / n, when there are two or more.
+// element of its own, L_int / m each for m such minima (one: the zone's element goes to it).
 // The minima: closestSections from the eq. 8 sections at zeta = 1/2 (first), then from the
 // zone's linear map (sI(zeta_k), sJ(zeta_k)), zeta_k = k / n, n = ceil(8 L_int / h_min) within
 // [4, 256] (point zones: every k; long zones, for their cost: the k where the fibres make more
@@ -449,20 +449,21 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
     });
     if (keep && !known) minima.push_back(sides);
   }
-  const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
+  // Along the zone: by zeta of the longer interval; a zone of zero length by (sI, sJ).
+  const bool onI = std::abs(g.dI) >= std::abs(g.dJ), flat = g.dI == 0 && g.dJ == 0;
   std::stable_sort(minima.begin(), minima.end(), [&](const ElementSides& a, const ElementSides& b) {
+    if (flat) return a.sI < b.sI || (a.sI == b.sI && a.sJ < b.sJ);
     return onI ? (a.sI - g.sI1) / g.dI < (b.sI - g.sI1) / g.dI
                : (a.sJ - g.sJ1) / g.dJ < (b.sJ - g.sJ1) / g.dJ;
   });
   return minima;
 }
 
-// A point zone's elements at its minima when it has two or more; else empty (one element).
+// A point zone's elements: one at each of its touching minima (none found: empty, and its one
+// element takes the closest sections from zeta = 1/2 as before).
 std::vector<ElementSides> pointZoneDips(const Intermediate& g, const Windows& w,
                                         const ContactParams& p, double sep, double L) {
-  std::vector<ElementSides> dips = zoneMinima(g, w, p, sep, L, Minima::Touching);
-  if (dips.size() < 2) dips.clear();
-  return dips;
+  return zoneMinima(g, w, p, sep, L, Minima::Touching);
 }
 
 // A section at an interior node of its fibre lies in either element there; locate() takes the
@@ -502,7 +503,7 @@ void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) 
 }
 
 // The zone's element count: the abscissas of forEachElementAbscissa, or a point zone's dips
-// when it has two or more (pointZoneDips).
+// (pointZoneDips) when it has any.
 Index zoneElementCount(const Intermediate& g, double L, const ContactParams& p) {
   Index count = 0;
   forEachElementAbscissa(g, L, p, [&](double, double) { ++count; });
@@ -526,10 +527,13 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.length[e++] = length;
     total += length;
   });
-  // A point zone counted with its dips (zoneElementCount): an element at each.
-  const std::vector<ElementSides> dips =
-      e - first == 1 && nc > 1 ? pointZoneDips(g, windows, p, sep, L) : std::vector<ElementSides>{};
-  for (std::size_t k = 0; k < dips.size(); ++k) {
+  // A point zone counted with its dips (zoneElementCount, the same function of the same inputs):
+  // an element at each, L_int / nc each; one dip keeps the abscissa's zeta = 1/2 and L_int.
+  std::vector<ElementSides> dips =
+      e - first == 1 ? pointZoneDips(g, windows, p, sep, L) : std::vector<ElementSides>{};
+  if (!dips.empty() && dips.size() != std::size_t(nc))  // never: both passes agree; kept safe
+    dips.resize(std::size_t(nc), dips.back());
+  for (std::size_t k = 0; nc > 1 && k < dips.size(); ++k) {
     const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
     const double zeta = onI ? (dips[k].sI - g.sI1) / g.dI : (dips[k].sJ - g.sJ1) / g.dJ;
     el.zeta[first + Index(k)] = std::isfinite(zeta) ? zeta : 0.5;

@@ -55,10 +55,11 @@
 //     eq. 8 sections at zeta = 1/2 and from the zone's linear map at zeta = k / n (n = ceil(8
 //     L_int / h_min) in [4, 256]; long zones only where the fibres cross, |t_I x t_J| >
 //     sin theta_parallel). A long zone's narrow ones (the patch a penetration p_max spans
-//     shorter than the element spacing) each take the nearest element; a point zone with two or
-//     more whose centres lie within R_I + R_J + 2 p_max has an element at each (L_int / n each):
-//     a strand bent round another more tightly than their distance comes closest to it twice,
-//     and one element at one minimum let the strands through at the other.
+//     shorter than the element spacing) each take the nearest element; a point zone has an
+//     element at each of its minima whose centres lie within R_I + R_J + 2 p_max (L_int / m each
+//     for m of them; none: its one element from zeta = 1/2 as above): a strand bent round
+//     another more tightly than their distance comes closest to it twice, and one element at one
+//     minimum let the strands through at the other.
 //   Flat ends: when a section is an end of its fibre and the other section's centre lies beyond
 //     that end's plane (by more than 1e-9 R), the particle is the point of the end face closest
 //     to that centre, xi = m clamped to |xi| <= R, G m the projection of the centre onto the

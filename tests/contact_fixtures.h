@@ -145,14 +145,17 @@ inline void detect(const FibreStore& fs, const Eigen::VectorXd& q, const Contact
 // element has the nodes (-w, -w, z0 + k), (0, 0, z0), (w, w, z0 + k), with k^2 = 16 (z0^2 - rho^2)
 // and w^2 = -k^2 / 2 - 2 k z0: its distance from I's axis has minima rho at xi = -+1/2 (s = 1.25 h
 // and 1.75 h on J, h = J's element length) and the ridge z0 at xi = 0; its outer elements lead
-// away along its end tangents. The state q (the fibres' directors those of the straight start).
+// away along its end tangents; `tilt` (mm) adds tilt xi to z along the middle element (its end
+// nodes -+tilt), which lowers one minimum and raises the other. The state q (the fibres'
+// directors those of the straight start).
 struct BentRound {
   FibreStore fs;
   Eigen::VectorXd q;
   double w;  // mm
 };
 
-inline BentRound bentRound(double R, int elementsI, double lengthJ, double rho, double z0) {
+inline BentRound bentRound(double R, int elementsI, double lengthJ, double rho, double z0,
+                           double tilt = 0) {
   BentRound b;
   const double k = -4 * std::sqrt(z0 * z0 - rho * rho);
   b.w = std::sqrt(-0.5 * k * k - 2 * k * z0);
@@ -160,8 +163,9 @@ inline BentRound bentRound(double R, int elementsI, double lengthJ, double rho, 
   add(b.fs, polylineFibre("j", R, 3, 2, {Vec3(0, -lengthJ / 2, 0), Vec3(0, lengthJ / 2, 0)}));
   b.q = b.fs.q;
   const double w = b.w;
-  const Vec3 left(-w, -w, z0 + k), mid(0, 0, z0), right(w, w, z0 + k);
-  const Vec3 tLeft = Vec3(w, w, -2 * k).normalized(), tRight = Vec3(w, w, 2 * k).normalized();
+  const Vec3 left(-w, -w, z0 + k - tilt), mid(0, 0, z0), right(w, w, z0 + k + tilt);
+  const Vec3 tLeft = Vec3(w, w, -2 * k + tilt).normalized();
+  const Vec3 tRight = Vec3(w, w, 2 * k + tilt).normalized();
   const Vec3 nodes[7] = {left - 0.6 * tLeft, left - 0.3 * tLeft, left, mid,
                          right, right + 0.3 * tRight, right + 0.6 * tRight};
   for (int n = 0; n < 7; ++n) b.q.segment<3>(kNodeDofs * (b.fs.firstNode[1] + n)) = nodes[n];

@@ -36,7 +36,7 @@ struct Element {
   double gap, theta;
   std::uint8_t fallback;  // section and tangent bits only (kFallbackSectionI/J, kFallbackTangent)
   bool ambiguous;         // several plane-cut roots: the pipeline's choice is not checked
-  bool dip = false;       // one of a point zone's several minima (length L_int / n)
+  bool dip = false;       // one of a point zone's m >= 2 minima (length L_int / m)
 };
 
 struct Detection {
@@ -469,8 +469,8 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   double curvature = 0;
   for (auto [zeta, length] : placed)
     out.push_back(element(zeta, length, placed.size() == 1, nullptr, curvature));
-  // The zone's minima (docs/CONTACT.md 1.4, "Crossings in long zones" and "Point zones with
-  // several dips"): closestPair from the eq. 8 sections at zeta = 1/2 and from the linear map at
+  // The zone's minima (docs/CONTACT.md 1.4, "Crossings in long zones" and "Every minimum of a
+  // zone"): closestPair from the eq. 8 sections at zeta = 1/2 and from the linear map at
   // zeta = k / n, n = ceil(8 L_int / h_min) in [4, 256] (point zones: every k; long zones: where
   // the fibres make more than theta_parallel); distinct (|dsI| + |dsJ| > h_min / 20); kept in a
   // point zone when the centres lie within R_I + R_J + 2 p_max, in a long zone when the patch a
@@ -500,9 +500,14 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       for (const Element& m : minima) known = known || std::abs(m.sI - st.sI) + std::abs(m.sJ - st.sJ) <= hMin / 20;
       if (keep && !known) minima.push_back(st);
     }
-    std::stable_sort(minima.begin(), minima.end(), [&](const Element& a, const Element& b) { return zetaOf(a) < zetaOf(b); });
+    const bool flat = dI == 0 && dJ == 0;  // a zone of zero length: by (sI, sJ)
+    std::stable_sort(minima.begin(), minima.end(), [&](const Element& a, const Element& b) {
+      return flat ? a.sI < b.sI || (a.sI == b.sI && a.sJ < b.sJ) : zetaOf(a) < zetaOf(b);
+    });
   }
-  if (point && minima.size() >= 2) {  // an element at each, L_int / n each
+  if (point && minima.size() == 1) {  // the zone's one element at its one touching minimum
+    out[0] = element(placed[0].first, placed[0].second, false, &minima[0], curvature);
+  } else if (point && minima.size() >= 2) {  // an element at each, L_int / m each
     out.clear();
     for (const Element& m : minima) {
       const double zeta = zetaOf(m);

@@ -11,6 +11,7 @@
 // measured from the centrelines (tests/centreline_measure.h).
 #include "centreline_measure.h"
 #include "contact_fixtures.h"
+#include "systems/contact_params.h"
 #include "components/contact_state.h"
 #include "engine/world.h"
 #include "io/scene_loader.h"
@@ -250,4 +251,40 @@ TEST_CASE("a strand bent round a fibre that comes closest to it twice has an ele
     CHECK(std::abs(minima[0].second - rho) < 1e-9);
     CHECK(std::abs(distance(1.5 * h) - z0) < 1e-12);
   }
+}
+
+TEST_CASE("a point zone with one touching minimum of two has its element there") {
+  // bentRound tilted by 0.004 mm: one minimum 4 p_max deep, the other outside the touching band
+  // (R_I + R_J + 2 p_max), the ridge between them. The zone's one element must sit at the deep
+  // one: from zeta = 1/2 alone its Newton ended on the ridge (found by a review, 2026-12-06).
+  constexpr double rho = 2 * kR - 3e-4, z0 = rho + 3e-3;
+  const fixtures::BentRound b = fixtures::bentRound(kR, 2, 4, rho, z0, 0.004);
+  const FibreStore& fs = b.fs;
+  fixtures::Detected d;
+  const ContactParams p = fixtures::defaults(fs);
+  fixtures::detect(fs, b.q, p, d);
+  REQUIRE(d.zones.size() == 1);
+  // Independently: the minima of the distance from I's axis along J, by dense sampling.
+  std::vector<std::pair<double, double>> minima;
+  const int n = 40000;
+  auto distance = [&](double sJ) {
+    const Vec3 x = test::centreline(fs, b.q, 1, sJ);
+    return std::hypot(x.y(), x.z());
+  };
+  for (int i = 1; i < n; ++i) {
+    const double a = fs.length[1] * (i - 1) / n, m = fs.length[1] * i / n, c = fs.length[1] * (i + 1) / n;
+    if (distance(m) < distance(a) && distance(m) <= distance(c)) minima.push_back({m, distance(m)});
+  }
+  REQUIRE(minima.size() == 2);
+  const auto deep = std::min_element(minima.begin(), minima.end(),
+                                     [](const auto& x, const auto& y) { return x.second < y.second; });
+  const double band = 2 * kR + 2 * pairPMax(p, 0, 1);
+  MESSAGE("minima " << minima[0].second << " and " << minima[1].second << " mm, band " << band);
+  REQUIRE(deep->second < 2 * kR - 2 * pairPMax(p, 0, 1));
+  REQUIRE(std::max(minima[0].second, minima[1].second) > band);
+  REQUIRE(d.el.size() == 1);
+  const double dc = (test::centreline(fs, b.q, 0, d.el.sI[0]) - test::centreline(fs, b.q, 1, d.el.sJ[0])).norm();
+  MESSAGE("element: sJ " << d.el.sJ[0] << ", centres " << dc << " mm apart");
+  CHECK(std::abs(d.el.sJ[0] - deep->first) < 1e-4);
+  CHECK(std::abs(dc - deep->second) < 1e-9);
 }
