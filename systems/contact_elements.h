@@ -63,10 +63,10 @@
 //   Flat ends: when a section is an end of its fibre and the other section's centre lies beyond
 //     that end's plane (by more than 1e-9 R), the particle is the point of the end face closest
 //     to that centre, xi = m clamped to |xi| <= R, G m the projection of the centre onto the
-//     section plane; the other particle is the outline point
-//     facing it; N is normal to the other fibre's axis through it (kEndFaceI / kEndFaceJ,
-//     systems/contact_normals.h). So no contact exists past an end, and an end's face and rim
-//     touch the other fibre's side.
+//     section plane; the other particle is the outline point facing it; N is normal to the other
+//     fibre's axis through it (kEndFaceI / kEndFaceJ, systems/contact_normals.h). So no contact
+//     exists past an end, and an end's face and rim touch the other fibre's side. (Two ends
+//     facing each other are not modelled: docs/CONTACT.md, after the fallback table.)
 //   Forced normals (a step's forced_normals; systems/contact_normals.h): when the element's
 //     fibres are of different classes with different levels at sI, sJ, N = sign D and the
 //     particles are the outline points facing along N instead (I's towards -N, J's towards +N),
