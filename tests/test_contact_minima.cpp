@@ -11,10 +11,11 @@
 // measured from the centrelines (tests/centreline_measure.h).
 #include "centreline_measure.h"
 #include "contact_fixtures.h"
-#include "systems/contact_params.h"
+
 #include "components/contact_state.h"
 #include "engine/world.h"
 #include "io/scene_loader.h"
+#include "systems/contact_params.h"
 
 #include <doctest/doctest.h>
 
@@ -89,7 +90,6 @@ SceneDef heldScene(const std::string& fibres, const std::string& clamps, const c
 struct Held {
   double deepest = 0;  // the deepest penetration -g_N the elements report, mm
   int endFaces = 0;    // elements on an end face
-  std::vector<double> sJ, gap;  // per element: J's section (mm), g_N (mm)
   FibreStore fibres;
   Eigen::VectorXd q;
 };
@@ -102,8 +102,6 @@ Held solveHeld(const SceneDef& s) {
   for (Index e = 0; e < el.size(); ++e) {
     out.deepest = std::max(out.deepest, -el.gap[e]);
     out.endFaces += (el.fallback[e] & (kEndFaceI | kEndFaceJ)) != 0;
-    out.sJ.push_back(el.sJ[e]);
-    out.gap.push_back(el.gap[e]);
   }
   out.fibres = w.fibres();
   out.q = w.fibres().q;
