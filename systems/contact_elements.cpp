@@ -353,13 +353,17 @@ bool closestSections(const Intermediate& g, const Windows& w, double thetaParall
                              curvature);
 }
 
-// The element of a point zone that goes to the closest points: among those not `taken`, the one
-// whose zeta is nearest theirs (zeta of sI on I's interval, or of sJ where J's interval is the
-// longer); -1 when all are taken.
+// The zeta of a pair of sections along the zone: of sI on I's interval, or of sJ where J's
+// interval is the longer (not finite on a zone of zero length).
+double zetaAlong(const Intermediate& g, const ElementSides& s) {
+  return std::abs(g.dI) >= std::abs(g.dJ) ? (s.sI - g.sI1) / g.dI : (s.sJ - g.sJ1) / g.dJ;
+}
+
+// The element of a zone that goes to the closest points: among those not `taken`, the one whose
+// zeta is nearest theirs (zetaAlong); -1 when all are taken.
 Index nearestElement(const Intermediate& g, const ContactElementStore& el, Index first, Index nc,
                      const ElementSides& closest, const std::vector<char>& taken) {
-  const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
-  const double zeta = onI ? (closest.sI - g.sI1) / g.dI : (closest.sJ - g.sJ1) / g.dJ;
+  const double zeta = zetaAlong(g, closest);
   Index best = -1;
   for (Index e = first; e < first + nc; ++e)
     if (!taken[e - first] && (best < 0 || std::abs(el.zeta[e] - zeta) < std::abs(el.zeta[best] - zeta)))
@@ -416,6 +420,8 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
 // at t = 0.735: 12 p_max at one, 4.6 at the other, by turns, until the increment failed). Every
 // minimum whose centres lie within R_I + R_J + 2 p_max (that touches, or nearly) then carries an
 // element of its own, L_int / m each for m such minima (one: the zone's element goes to it).
+// Sought once per detection, in the counting pass (zoneElementCount), for point zones; per long
+// zone in its element pass.
 // The minima: closestSections from the eq. 8 sections at zeta = 1/2 (first), then from the
 // zone's linear map (sI(zeta_k), sJ(zeta_k)), zeta_k = k / n, n = ceil(8 L_int / h_min) within
 // [4, 256] (point zones: every k; long zones, for their cost: the k where the fibres make more
@@ -449,21 +455,13 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
     });
     if (keep && !known) minima.push_back(sides);
   }
-  // Along the zone: by zeta of the longer interval; a zone of zero length by (sI, sJ).
-  const bool onI = std::abs(g.dI) >= std::abs(g.dJ), flat = g.dI == 0 && g.dJ == 0;
+  // Along the zone (zetaAlong); a zone of zero length by (sI, sJ).
+  const bool flat = g.dI == 0 && g.dJ == 0;
   std::stable_sort(minima.begin(), minima.end(), [&](const ElementSides& a, const ElementSides& b) {
     if (flat) return a.sI < b.sI || (a.sI == b.sI && a.sJ < b.sJ);
-    return onI ? (a.sI - g.sI1) / g.dI < (b.sI - g.sI1) / g.dI
-               : (a.sJ - g.sJ1) / g.dJ < (b.sJ - g.sJ1) / g.dJ;
+    return zetaAlong(g, a) < zetaAlong(g, b);
   });
   return minima;
-}
-
-// A point zone's elements: one at each of its touching minima (none found: empty, and its one
-// element takes the closest sections from zeta = 1/2 as before).
-std::vector<ElementSides> pointZoneDips(const Intermediate& g, const Windows& w,
-                                        const ContactParams& p, double sep, double L) {
-  return zoneMinima(g, w, p, sep, L, Minima::Touching);
 }
 
 // A section at an interior node of its fibre lies in either element there; locate() takes the
@@ -502,19 +500,24 @@ void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) 
   }
 }
 
-// The zone's element count: the abscissas of forEachElementAbscissa, or a point zone's dips
-// (pointZoneDips) when it has any.
-Index zoneElementCount(const Intermediate& g, double L, const ContactParams& p) {
+// The zone's element count: the abscissas of forEachElementAbscissa, or a point zone's dips (its
+// touching minima, zoneMinima) when it has any; `dips` receives them (empty otherwise).
+Index zoneElementCount(const Intermediate& g, double L, const ContactParams& p,
+                       std::vector<ElementSides>& dips) {
   Index count = 0;
   forEachElementAbscissa(g, L, p, [&](double, double) { ++count; });
+  dips.clear();
   if (count != 1) return count;
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
-  const auto dips = pointZoneDips(g, searchWindows(g, proximityDistance(p, g.I, g.J)), p, sep, L);
+  dips = zoneMinima(g, searchWindows(g, proximityDistance(p, g.I, g.J)), p, sep, L,
+                    Minima::Touching);
   return dips.empty() ? 1 : Index(dips.size());
 }
 
+// `dips`: the point zone's touching minima from zoneElementCount (nc of them, or none).
 void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& p,
-                  const Intermediate& g, const ZoneStore& zones, Index z, ContactElementStore& el) {
+                  const Intermediate& g, const ZoneStore& zones, Index z,
+                  const std::vector<ElementSides>& dips, ContactElementStore& el) {
   const Index nc = zones.elementCount[z], first = zones.firstElement[z];
   const Windows windows = searchWindows(g, proximityDistance(p, g.I, g.J));
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
@@ -527,15 +530,10 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     el.length[e++] = length;
     total += length;
   });
-  // A point zone counted with its dips (zoneElementCount, the same function of the same inputs):
-  // an element at each, L_int / nc each; one dip keeps the abscissa's zeta = 1/2 and L_int.
-  std::vector<ElementSides> dips =
-      e - first == 1 ? pointZoneDips(g, windows, p, sep, L) : std::vector<ElementSides>{};
-  if (!dips.empty() && dips.size() != std::size_t(nc))  // never: both passes agree; kept safe
-    dips.resize(std::size_t(nc), dips.back());
+  // A point zone's dips: an element at each, L_int / nc each; one dip keeps the abscissa's
+  // zeta = 1/2 and L_int.
   for (std::size_t k = 0; nc > 1 && k < dips.size(); ++k) {
-    const bool onI = std::abs(g.dI) >= std::abs(g.dJ);
-    const double zeta = onI ? (dips[k].sI - g.sI1) / g.dI : (dips[k].sJ - g.sJ1) / g.dJ;
+    const double zeta = zetaAlong(g, dips[k]);
     el.zeta[first + Index(k)] = std::isfinite(zeta) ? zeta : 0.5;
     el.length[first + Index(k)] = L / double(nc);
   }
@@ -600,6 +598,7 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
                              const Cancel& cancel) {
   Span span(trace, "contact-elements");
   const Index nz = zones.size();
+  std::vector<std::vector<ElementSides>> dips(std::size_t(nz), std::vector<ElementSides>{});
   auto geometry = [&](Index z) {
     return Intermediate{fs, centrelines, zones.fibreI[z], zones.fibreJ[z], zones.sI1[z],
                         zones.sI2[z], zones.sJ1[z], zones.sJ2[z], zones.sI2[z] - zones.sI1[z],
@@ -610,7 +609,7 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
       const Intermediate g = geometry(z);
       const double L = intermediateLength(g);
       zones.intermediateLength[z] = L;
-      zones.elementCount[z] = zoneElementCount(g, L, params);
+      zones.elementCount[z] = zoneElementCount(g, L, params, dips[std::size_t(z)]);
     }
   });
   Index total = 0;
@@ -622,7 +621,7 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
   tbb::parallel_for(tbb::blocked_range<Index>(0, nz, 4), [&](const tbb::blocked_range<Index>& r) {
     if (cancel()) return;
     for (Index z = r.begin(); z != r.end(); ++z)
-      zoneElements(fs, q, params, geometry(z), zones, z, elements);
+      zoneElements(fs, q, params, geometry(z), zones, z, dips[std::size_t(z)], elements);
   });
   span.items(total);
 }
