@@ -2,6 +2,7 @@
 
 #include "core/columns.h"
 #include "systems/contact_geometry.h"
+#include "systems/contact_intermediate.h"
 #include "systems/contact_normals.h"
 #include "systems/contact_sections.h"
 
@@ -10,67 +11,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <vector>
 
 namespace fibra {
 namespace {
-
-// The intermediate geometry of one zone (eq. 5): zeta -> sI(zeta), sJ(zeta).
-struct Intermediate {
-  const FibreStore& fs;
-  const CentrelineStore& cl;
-  Index I, J;
-  double sI1, sI2, sJ1, sJ2;  // the zone's intervals, mm
-  double dI, dJ;              // their signed lengths, mm
-
-  // (1 - zeta) s1 + zeta s2: exactly s1 and s2 at the zone ends
-  double sI(double zeta) const { return (1 - zeta) * sI1 + zeta * sI2; }
-  double sJ(double zeta) const { return (1 - zeta) * sJ1 + zeta * sJ2; }
-  // x_int(zeta), mm
-  Vec3 position(double zeta) const {
-    return 0.5 * (centrelineAt(fs, cl, I, sI(zeta)).x + centrelineAt(fs, cl, J, sJ(zeta)).x);
-  }
-  // dx_int / dzeta, mm
-  Vec3 tangent(double zeta) const {
-    return 0.5 * (centrelineTangent(fs, cl, I, sI(zeta)) * dI +
-                  centrelineTangent(fs, cl, J, sJ(zeta)) * dJ);
-  }
-};
-
-// Successive zeta in (0, 1) where s1 + zeta d crosses an element end n h.
-struct Breakpoints {
-  double s1, d, h;
-  std::int64_t n;  // next element end index
-  Breakpoints(double s1_, double d_, double h_) : s1(s1_), d(d_), h(h_) {
-    n = d > 0 ? std::int64_t(std::floor(s1 / h)) + 1 : std::int64_t(std::ceil(s1 / h)) - 1;
-  }
-  double peek() const {
-    if (d == 0) return 1;
-    const double z = (double(n) * h - s1) / d;
-    return z > 0 && z < 1 ? z : 1;
-  }
-  void advance() { n += d > 0 ? 1 : -1; }
-};
-
-// L_int = int_0^1 |t_int| dzeta, two-point Gauss per piece between element ends.
-double intermediateLength(const Intermediate& g) {
-  if (g.dI == 0 && g.dJ == 0) return 0;
-  Breakpoints bI(g.sI1, g.dI, elementLength(g.fs, g.I)), bJ(g.sJ1, g.dJ, elementLength(g.fs, g.J));
-  const double r = 0.5 / std::sqrt(3.0);
-  double a = 0, total = 0;
-  while (a < 1) {
-    const double zI = bI.peek(), zJ = bJ.peek(), b = std::min(zI, zJ);
-    if (b > a) {
-      const double mid = 0.5 * (a + b), w = b - a;
-      total += 0.5 * w * (g.tangent(mid - r * w).norm() + g.tangent(mid + r * w).norm());
-    }
-    if (zI == b && zI < 1) bI.advance();
-    if (zJ == b && zJ < 1) bJ.advance();
-    a = b;
-  }
-  return total;
-}
 
 // The interval of a zone on one fibre widened by Delta_prox and clamped to the fibre, mm.
 std::pair<double, double> widened(const FibreStore& fs, Index f, double s1, double s2, double delta) {
@@ -130,163 +74,6 @@ struct ElementSides {
   double sI, sJ;
   std::uint8_t flags;
 };
-
-// The zeta where the intermediate geometry crosses the plane through the element end x_f(s)
-// normal to the mean tangent there: the root of F(zeta) = (x_int(zeta) - x_f(s)) . t_hat, with
-// t_hat = t_int at `guess` (the zone's linear map of s) built from f's node tangent (the mean of
-// its elements' one-sided tangents: F is continuous where t_int has a kink). The eq. 8 sections
-// there are at s on f up to the kink. Within `window` of the guess (clamped to [0, 1]): the
-// window scanned in 8 steps, the sign change nearest the guess refined by the Illinois method;
-// the guess itself when F keeps its sign.
-double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, double window) {
-  const Vec3 x = centrelineAt(g.fs, g.cl, f, s).x;
-  const bool onI = f == g.I;
-  const Vec3 tHat = 0.5 * (centrelineTangent(g.fs, g.cl, f, s) * (onI ? g.dI : g.dJ) +
-                           (onI ? centrelineTangent(g.fs, g.cl, g.J, g.sJ(guess)) * g.dJ
-                                : centrelineTangent(g.fs, g.cl, g.I, g.sI(guess)) * g.dI));
-  auto F = [&](double z) { return (g.position(z) - x).dot(tHat); };
-  const double lo = std::max(0.0, guess - window), hi = std::min(1.0, guess + window);
-  double a = 0, b = 0, fa = 0, fb = 0, nearest = 2;
-  double z0 = lo, f0 = F(lo);
-  for (int k = 1; k <= 8; ++k) {
-    const double z1 = lo + (hi - lo) * k / 8, f1 = F(z1);
-    const double distance = std::abs(0.5 * (z0 + z1) - guess);
-    if ((f0 > 0) != (f1 > 0) && distance < nearest) a = z0, b = z1, fa = f0, fb = f1, nearest = distance;
-    z0 = z1, f0 = f1;
-  }
-  if (nearest > 1) return guess;
-  int side = 0;
-  for (int it = 0; it < 60 && b - a > 1e-15; ++it) {
-    const double c = (a * fb - b * fa) / (fb - fa), fc = F(c);
-    if ((fc > 0) == (fb > 0)) {
-      b = c, fb = fc;
-      if (side == -1) fa *= 0.5;
-      side = -1;
-    } else {
-      a = c, fa = fc;
-      if (side == 1) fb *= 0.5;
-      side = 1;
-    }
-    if (fc == 0) return c;
-  }
-  return 0.5 * (a + b);
-}
-
-// Lobatto sampling: the missed dip of the gap g(zeta) = |D| - R_I - R_J, D = x_I - x_J, between
-// samples dz apart is at most K dz^2 / 8 for K >= |g''| on the piece. With K estimated below,
-// it is kept within kSagShare p_max (the tools' rule, systems/tool_detection.h) by cutting the
-// piece into m Simpson sub-pieces (samples (b - a) / 2m apart), m <= kMaxSimpsonParts. On a
-// piece both sections lie in one element each, so with x = P.a + P.b z + P.c z^2 and
-// dz/dzeta = 2 d / h:
-//   D'' = 2 c_I (2 d_I / h_I)^2 - 2 c_J (2 d_J / h_J)^2   (constant on the piece),
-//   g'' = n . D'' + |D'_perp|^2 / |D|, estimated by |D''| + the larger of |D'_perp|^2 / |D| at
-// the piece's ends, |D| taken at least (R_I + R_J) / 2: an estimate, not a bound (|D| is least
-// inside the piece, at a dip; a piece that spans a dropped sliver cut uses its midpoint's
-// elements), and m is capped. So the Lobatto elements sample the gap much more finely than the
-// Gauss points but do not guarantee p_max / 4. Bent fibres lying side by side (a yarn's) dip
-// between samples by 1.1 p_max at h / 2 spacing (37 fibres, 8 elements, measured); a shallow
-// crossing's closest point lies between them. m follows the state, so a zone's element count
-// may change from one detection to the next.
-constexpr double kSagShare = 0.25;
-constexpr int kMaxSimpsonParts = 8;
-
-int simpsonParts(const Intermediate& g, double a, double b, double sag) {
-  const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
-  const FibrePoint pI = locate(g.fs, g.I, g.sI(0.5 * (a + b)));
-  const FibrePoint pJ = locate(g.fs, g.J, g.sJ(0.5 * (a + b)));
-  const CentrelinePolynomial &PI = g.cl.poly[pI.element], &PJ = g.cl.poly[pJ.element];
-  const double zI = 2 * g.dI / hI, zJ = 2 * g.dJ / hJ;  // dz/dzeta on I and J
-  double K = (2 * PI.c * zI * zI - 2 * PJ.c * zJ * zJ).norm();
-  const double floor = 0.5 * (g.fs.radius[g.I] + g.fs.radius[g.J]);
-  double drift = 0;
-  for (const double zeta : {a, b}) {
-    const double z1 = std::clamp(pI.z + (zeta - 0.5 * (a + b)) * zI, -1.0, 1.0);
-    const double z2 = std::clamp(pJ.z + (zeta - 0.5 * (a + b)) * zJ, -1.0, 1.0);
-    const Vec3 D = PI.a + z1 * PI.b + z1 * z1 * PI.c - (PJ.a + z2 * PJ.b + z2 * z2 * PJ.c);
-    const Vec3 dD = (PI.b + 2 * z1 * PI.c) * zI - (PJ.b + 2 * z2 * PJ.c) * zJ;
-    const double d = D.norm();
-    const double along = d > 0 ? dD.dot(D) / d : 0;
-    drift = std::max(drift, (dD.squaredNorm() - along * along) / std::max(d, floor));
-  }
-  K += drift;
-  if (!(sag > 0) || !(K > 0)) return 1;
-  const double m = std::ceil(0.5 * (b - a) * std::sqrt(K / (8 * sag)) * (1 - 1e-12));
-  return int(std::clamp(m, 1.0, double(kMaxSimpsonParts)));
-}
-
-// The contact elements of a zone: visit(zeta, length) in increasing zeta. floor(2 L_int / h_min)
-// (eq. 6) decides between a point contact (< 2: one element at zeta = 1/2 carrying L_int) and a
-// line contact. A line contact is cut where the eq. 8 sections cross the element ends of either
-// fibre (sectionAbscissa, within one element's span of the zone's linear map; a cut within
-// h_min / 10 of arc length of the previous one kept or of the zone's end is dropped, so no
-// sliver piece remains). A piece's sections then lie within one element of I and one of J, and
-// a uniform line pressure p gives both fibres the nodal forces of the consistent line load,
-// int N_a p ds, exactly where the sections move affinely with zeta: the integrand is cubic in
-// zeta and both rules below are exact for cubics. On a piece [a, b] of width w = b - a:
-//   Gauss:   the two Gauss points (a + b) / 2 -+ w / (2 sqrt 3), each of length w / 2 |t_int|;
-//   Lobatto: a, (a + b) / 2 and b with lengths w / 6, 4 w / 6, w / 6 times |t_int| (Simpson),
-//            a cut shared by two pieces being one element carrying both sixths. Every kept
-//            cut then carries an element: a kink of the centreline at a node, where the Gauss
-//            points (0.21 h away) see the fibres apart, is sampled where it is deepest (a node
-//            within h_min / 10 of a kept cut, whose cut was dropped, within that distance).
-// Paper: eq. 7, Nc equally spaced elements zeta_k = (k - 1) / (Nc - 1), each of length L_int / Nc
-// (equal weights).
-template <class Visit>
-void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams& p, Visit visit) {
-  const ElementPlacement placement = p.placement;
-  const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
-  const double h = std::min(hI, hJ);
-  const double count = std::floor(2 * L / h);
-  if (count < 2) {
-    visit(0.5, L);
-    return;
-  }
-  if (placement == ElementPlacement::Paper) {
-    for (int k = 0; k < int(count); ++k) visit(k / (count - 1), L / count);
-    return;
-  }
-  std::vector<double> cuts;
-  for (auto [f, s1, d, hf] : {std::tuple{g.I, g.sI1, g.dI, hI}, std::tuple{g.J, g.sJ1, g.dJ, hJ}})
-    for (Breakpoints b(s1, d, hf); b.peek() < 1; b.advance())
-      cuts.push_back(sectionAbscissa(g, f, double(b.n) * hf, b.peek(), hf / std::abs(d)));
-  std::sort(cuts.begin(), cuts.end());
-  const double sliver = 0.1 * h / std::max(std::abs(g.dI), std::abs(g.dJ));  // in zeta
-  std::vector<double> ends{0.0};  // the pieces' ends: 0, the kept cuts, 1
-  for (const double b : cuts)
-    if (b - ends.back() >= sliver && 1 - b >= sliver) ends.push_back(b);
-  ends.push_back(1.0);
-  const std::size_t pieces = ends.size() - 1;
-  if (placement == ElementPlacement::Weighted) {
-    const double r = 0.5 / std::sqrt(3.0);
-    for (std::size_t k = 0; k < pieces; ++k) {
-      const double mid = 0.5 * (ends[k] + ends[k + 1]), w = ends[k + 1] - ends[k];
-      for (const double z : {mid - r * w, mid + r * w}) visit(z, 0.5 * w * g.tangent(z).norm());
-    }
-    return;
-  }
-  // Composite Simpson on each piece, in simpsonParts sub-pieces; |t_int| at a sub-piece's ends
-  // taken just inside it (t_int kinks at a node).
-  const double sag = kSagShare * pairPMax(p, g.I, g.J);
-  std::vector<double> sub{0.0};
-  for (std::size_t k = 0; k < pieces; ++k) {
-    const int m = simpsonParts(g, ends[k], ends[k + 1], sag);
-    for (int i = 1; i <= m; ++i) sub.push_back(ends[k] + (ends[k + 1] - ends[k]) * i / m);
-  }
-  sub.back() = 1.0;
-  const std::size_t n = sub.size() - 1;
-  std::vector<double> atEnd(n + 1, 0.0);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double a = sub[k], b = sub[k + 1], inside = 1e-9 * (b - a);
-    atEnd[k] += (b - a) / 6 * g.tangent(a + inside).norm();
-    atEnd[k + 1] += (b - a) / 6 * g.tangent(b - inside).norm();
-  }
-  for (std::size_t k = 0; k <= n; ++k) {
-    visit(sub[k], atEnd[k]);
-    if (k == n) break;
-    const double mid = 0.5 * (sub[k] + sub[k + 1]);
-    visit(mid, 4 * (sub[k + 1] - sub[k]) / 6 * g.tangent(mid).norm());
-  }
-}
 
 // Where a zone's sections are sought: its intervals on I and J widened by Delta_prox, clamped to
 // the fibres (mm; one per zone, shared by its elements).
