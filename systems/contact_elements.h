@@ -13,6 +13,7 @@
 //   x_int(zeta) = (x_I(sI(zeta)) + x_J(sJ(zeta))) / 2,  t_int = dx_int / dzeta          (eq. 5)
 //   L_int = int_0^1 |t_int| dzeta: two-point Gauss on each piece between the element ends of I
 //   and J (t_int is linear in zeta on a piece), 0 for a zero-length zone;
+//   (L_int and the placement below: systems/contact_intermediate.h)
 //   point or line: floor(2 L_int / h_min) < 2 (eq. 6), h_min = min(h_I, h_J): one element at
 //     zeta = 1/2 of length L_int. Else a line contact, whose elements are weighted (eq. 7
 //     replaced): the zone is cut at the element ends of both fibres (a cut within h_min / 10 of
