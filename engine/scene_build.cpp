@@ -14,6 +14,7 @@
 #include "systems/sparse_pattern.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 
 namespace fibra {
@@ -251,7 +252,17 @@ void buildWorld(WorldState& w) {
 
   std::vector<BeamIntegration> integration;
   for (const FibreDef& f : w.scene.fibres) integration.push_back(f.integration);
-  w.arena->execute([&] { buildBeamReference(w.fibres, w.materials, integration, w.beams); });
+  try {
+    w.arena->execute([&] { buildBeamReference(w.fibres, w.materials, integration, w.beams); });
+  } catch (const FoldedSectionError& e) {
+    char span[96];
+    std::snprintf(span, sizeof span, "%.6g and %.6g mm", e.s1, e.s2);
+    throw SceneError(at("fibres", std::size_t(e.fibre)) +
+                     ".geometry: the reference section folds between s = " + span +
+                     ": the centreline bends there tighter than the radius (a polyline corner "
+                     "inside an element is interpolated by such a curve: put the corner on a node, "
+                     "at a multiple of the element length, or round it)");
+  }
 
   double maxRadius = 0, maxArea = 0, maxE = 0;
   for (Index f = 0; f < w.fibres.fibres(); ++f) {

@@ -52,6 +52,9 @@ Eigen::Matrix3d basisTensor(int p) {
   return B;
 }
 
+// A section point whose frame has no positive volume (buildBeamReference reports the element).
+struct FoldedFrame {};
+
 // The metric at a section point: contravariant components A^ij and volume factor det.
 struct Metric {
   Eigen::Matrix3d con;
@@ -64,7 +67,7 @@ Metric metricAt(const Vec3 V[5], double x1, double x2) {
   A.col(1) = V[2];
   A.col(2) = V[0] + x1 * V[3] + x2 * V[4];
   const double det = A.determinant();
-  if (!(det > 0)) throw std::runtime_error("beam reference: degenerate section frame");
+  if (!(det > 0)) throw FoldedFrame{};
   return {(A.transpose() * A).inverse(), det};
 }
 
@@ -240,6 +243,48 @@ void placeLawSections(const FibreStore& fs, const MaterialStore& mats,
   beams.sectionPoints.assign(points, SectionPoint{});
 }
 
+// Element e's reference data: per axial point its coordinate, section stiffness (or law
+// section) and reference strains.
+void elementReference(const FibreStore& fs, const MaterialStore& mats,
+                      const std::vector<BeamIntegration>& integration, Index e, BeamStore& beams) {
+  const Index f = fs.elementFibre[e];
+  const Index mat = fs.material[f];
+  const int order = fs.order[f], np = beams.pointCount[e];
+  const Constants k = constantsOf(mats.youngModulus[mat], mats.poissonRatio[mat],
+                                  mats.bendingFactor[mat], mats.torsionFactor[mat]);
+  double zg[4], wg[4], N[3], dN[3];
+  gaussLegendre(np, zg, wg);
+  for (int p = 0; p < np; ++p) {
+    lagrangeShape(order, zg[p], N, dN);
+    Vec3 V[5];
+    for (auto& v : V) v.setZero();
+    for (int a = 0; a <= order; ++a) {
+      const Index n = fs.elementFirstNode[e] + a;
+      V[0] += dN[a] * x0Of(fs.qRef, n);
+      V[1] += N[a] * g1Of(fs.qRef, n);
+      V[2] += N[a] * g2Of(fs.qRef, n);
+      V[3] += dN[a] * g1Of(fs.qRef, n);
+      V[4] += dN[a] * g2Of(fs.qRef, n);
+    }
+    const Index i = beams.firstPoint[e] + p;
+    beams.z[i] = zg[p];
+    if (const Index l = beams.law[i]; l >= 0) {
+      LawSection& section = beams.lawSections[l];
+      lawSection(V, fs.radius[f], k, integration[f], wg[p], section,
+                 &beams.sectionPoints[section.first]);
+      beams.D[i].setZero();
+    } else {
+      beams.D[i] = sectionStiffness(V, fs.radius[f], mats.youngModulus[mat],
+                                    mats.poissonRatio[mat], mats.bendingFactor[mat],
+                                    mats.torsionFactor[mat], integration[f], wg[p]);
+    }
+    for (int j = 0; j < kGenStrains; ++j) {
+      const StrainPair& sp = kStrainPairs[j];
+      beams.eRef[i](j) = sp.c * V[sp.a].dot(V[sp.b]);
+    }
+  }
+}
+
 }  // namespace
 
 void buildBeamReference(const FibreStore& fs, const MaterialStore& mats,
@@ -260,44 +305,20 @@ void buildBeamReference(const FibreStore& fs, const MaterialStore& mats,
   beams.D.resize(total);
   beams.eRef.resize(total);
   placeLawSections(fs, mats, integration, beams);
+  std::vector<char> folded(std::size_t(ne), 0);
   tbb::parallel_for(Index(0), ne, [&](Index e) {
-    const Index f = fs.elementFibre[e];
-    const Index mat = fs.material[f];
-    const int order = fs.order[f], np = beams.pointCount[e];
-    const Constants k = constantsOf(mats.youngModulus[mat], mats.poissonRatio[mat],
-                                    mats.bendingFactor[mat], mats.torsionFactor[mat]);
-    double zg[4], wg[4], N[3], dN[3];
-    gaussLegendre(np, zg, wg);
-    for (int p = 0; p < np; ++p) {
-      lagrangeShape(order, zg[p], N, dN);
-      Vec3 V[5];
-      for (auto& v : V) v.setZero();
-      for (int a = 0; a <= order; ++a) {
-        const Index n = fs.elementFirstNode[e] + a;
-        V[0] += dN[a] * x0Of(fs.qRef, n);
-        V[1] += N[a] * g1Of(fs.qRef, n);
-        V[2] += N[a] * g2Of(fs.qRef, n);
-        V[3] += dN[a] * g1Of(fs.qRef, n);
-        V[4] += dN[a] * g2Of(fs.qRef, n);
-      }
-      const Index i = beams.firstPoint[e] + p;
-      beams.z[i] = zg[p];
-      if (const Index l = beams.law[i]; l >= 0) {
-        LawSection& section = beams.lawSections[l];
-        lawSection(V, fs.radius[f], k, integration[f], wg[p], section,
-                   &beams.sectionPoints[section.first]);
-        beams.D[i].setZero();
-      } else {
-        beams.D[i] = sectionStiffness(V, fs.radius[f], mats.youngModulus[mat],
-                                      mats.poissonRatio[mat], mats.bendingFactor[mat],
-                                      mats.torsionFactor[mat], integration[f], wg[p]);
-      }
-      for (int j = 0; j < kGenStrains; ++j) {
-        const StrainPair& sp = kStrainPairs[j];
-        beams.eRef[i](j) = sp.c * V[sp.a].dot(V[sp.b]);
-      }
+    try {
+      elementReference(fs, mats, integration, e, beams);
+    } catch (const FoldedFrame&) {
+      folded[std::size_t(e)] = 1;
     }
   });
+  const auto first = std::find(folded.begin(), folded.end(), 1);
+  if (first == folded.end()) return;
+  const Index e = Index(first - folded.begin()), f = fs.elementFibre[e];
+  const double h = fs.length[f] / double(fs.elementCount[f]);
+  const double k = double(e - fs.firstElement[f]);
+  throw FoldedSectionError(f, k * h, (k + 1) * h);
 }
 
 }  // namespace fibra

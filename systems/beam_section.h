@@ -29,6 +29,7 @@
 
 #include "components/beam_store.h"
 
+#include <stdexcept>
 #include <vector>
 
 namespace fibra {
@@ -53,7 +54,19 @@ inline int axialPoints(int order, AxialRule rule) {
   return rule == AxialRule::Full ? order + 1 : order;
 }
 
+// A fibre whose reference section frame folds (its volume factor det[g1 g2 x0' + x1 g1' + x2 g2']
+// is not positive somewhere on a section: the centreline bends there tighter than the radius, as
+// a quadratic element interpolating a polyline corner inside it does, or the directors lie along
+// it). Thrown by buildBeamReference for the lowest such element.
+struct FoldedSectionError : std::runtime_error {
+  Index fibre;    // the fibre's index
+  double s1, s2;  // the element's span of reference arc length, mm
+  FoldedSectionError(Index f, double a, double b)
+      : std::runtime_error("beam reference: a section frame folds"), fibre(f), s1(a), s2(b) {}
+};
+
 // Fills `beams` for every element of `fibres`; integration[f] gives fibre f's rules.
+// FoldedSectionError for a fibre whose reference section frame folds.
 void buildBeamReference(const FibreStore& fibres, const MaterialStore& materials,
                         const std::vector<BeamIntegration>& integration, BeamStore& beams);
 

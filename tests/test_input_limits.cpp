@@ -1,6 +1,7 @@
 // Hostile sizes cost neither memory nor time: a generator asked for 1e8 elements and a file
 // nested 100 000 brackets deep are refused with a field-named error at once (both took gigabytes
 // before: the generator allocated its fibres, the reader a path per nesting level).
+#include "engine/world.h"
 #include "io/scene_loader.h"
 #include "limited_child.h"
 #include "scene_test_util.h"
@@ -76,6 +77,23 @@ TEST_CASE("a fibre's elements, sectors and coordinates are bounded, with the fie
     CAPTURE(text);
     CHECK(errorOf([&] { loadSceneFromString(text, "s.json"); }) == "s.json: " + expected);
   }
+}
+
+TEST_CASE("a polyline corner inside an element is refused with the fibre and where, not a crash") {
+  // The corner at s = 3 mm falls 7e-5 mm inside element 11 (h = 0.25 mm): its quadratic element
+  // bends tighter than R = 0.1 mm and the section frame folds (was: exit 1, "beam reference:
+  // degenerate section frame", no field; found by a new user, 2026-12-06). On a node it builds.
+  const auto scene = [](const char* corner) {
+    return loadSceneFromString(std::string(R"({"units": "mm-N-MPa",
+      "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+      "fibres": [{"name": "f", "material": "m", "radius": 0.1, "elements": 18,
+        "geometry": {"type": "polyline", "points": [[0, 0, 0], [3, 0, 0], )") + corner +
+                                   R"(], "director": [0, 0, 1]}}],
+      "steps": [{"end_time": 1}]})", "corner.json");
+  };
+  const std::string e = errorOf([&] { World w(scene("[3, 1.5001, 0]")); });
+  CHECK(e.rfind("fibres[0].geometry: the reference section folds between s = 2.75006 and 3.00007 mm", 0) == 0);
+  CHECK(errorOf([&] { World w(scene("[3, 1.5, 0]")); }) == "(no error)");
 }
 
 TEST_CASE("a scene that needs more memory than the process may use is refused before building") {
