@@ -3,12 +3,17 @@
 contact elements): every fibre's centreline and directors sampled at --samples points per
 element (fibres of quadratic elements, fibra's default: Lagrange interpolation of the three nodes), every pair of samples
 on different fibres, or on one fibre more than --min-elements elements apart (self-contact),
-within --reach mm; each pair closer than 2.2 R is then refined to the closest points of the two
+within --reach mm; each pair closer than 2.2 R is refined to the closest points of the two
 centrelines near it (alternating golden-section searches within one sample spacing), so a
-crossing between samples is not missed. The overlap of a pair is w_a + w_b - d with d the
-distance of the two points and w = R |G^T n| each fibre's half-width along n = the direction
-between them (G = [g1 g2]). One radius for every fibre (--radius). Prints the largest overlap
-(mm and in units of --pmax) and where it is.
+crossing between samples is not missed, and measured there: w_a + w_b - d with d the distance of
+the two points and w = R |G^T n| each fibre's half-width along n = the direction between them
+(G = [g1 g2]), normal to both centrelines at closest points, where a section's width along n is
+the tube's (a pair the search left elsewhere, n more than 1e-3 off normal, is not measured). Where the closest point lies at a fibre's end (the search stopped there), that
+direction runs along the fibre and says nothing of its width: the end's flat disc x0 + G xi,
+|xi| <= R (5 rings of 72 points) is measured instead, each point's depth in the other fibre
+w - d (d its distance from the nearest point of the other centreline, w that fibre's half-width
+along it), the deepest. One radius for every fibre (--radius). Prints the largest overlap (mm and
+in units of --pmax) and where it is.
 
   python3 bench/centreline_overlap.py out/plectoneme/final_state.csv --radius 0.1 \
       --pmax 5e-4 --min-elements 4
@@ -88,9 +93,40 @@ def refine(rows_a, ua, rows_b, ub, step):
     return ua, ub
 
 
+def tangent(rows, u, h=1e-6):
+    """The centreline's unit tangent at element coordinate u (central differences)."""
+    elements = (len(rows) - 1) // 2
+    a, b = section(rows, max(0, u - h))[0], section(rows, min(elements, u + h))[0]
+    d = math.dist(a, b)
+    return [(y - x) / d for x, y in zip(a, b)]
+
+
 def half_width(g1, g2, n, radius):
     dot = lambda a, b: sum(x * y for x, y in zip(a, b))
     return radius * math.hypot(dot(g1, n), dot(g2, n))
+
+
+def disc_depth(rows_e, ue, rows_o, uo, radius):
+    """The deepest point of the end disc of fibre rows_e (at ue, an end) in fibre rows_o, near uo:
+    over x0 + xi1 g1 + xi2 g2 on 5 rings (|xi| = 0, R/4 .. R) of 72 points, w - d with d the
+    distance to the closest point of the other centreline (golden search within one element of
+    uo) and w that fibre's half-width along it; mm, negative when the disc is clear."""
+    x0, g1, g2 = section(rows_e, ue)
+    lo = (len(rows_o) - 1) // 2
+    deepest = -math.inf
+    for ring in range(5):
+        r = radius * ring / 4
+        for k in range(72 if ring else 1):
+            c, s = r * math.cos(math.pi * k / 36), r * math.sin(math.pi * k / 36)
+            p = [x0[i] + c * g1[i] + s * g2[i] for i in range(3)]
+            v = golden(lambda w: math.dist(section(rows_o, w)[0], p), max(0, uo - 1), min(lo, uo + 1))
+            xo, h1, h2 = section(rows_o, v)
+            d = math.dist(p, xo)
+            if d == 0:
+                return radius
+            n = [(p[i] - xo[i]) / d for i in range(3)]
+            deepest = max(deepest, half_width(h1, h2, n, radius) - d)
+    return deepest
 
 
 def state_parser(doc, samples):
@@ -117,15 +153,27 @@ def main():
     reach = a.reach or 2.5 * a.radius
     best = (0.0, None, None)
 
+    def at_end(f, u):
+        return u <= 1e-5 or u >= (len(fibres[f]) - 1) // 2 - 1e-5
+
     def consider(fi, ui, fj, uj):
         nonlocal best
         xi, g1i, g2i = section(fibres[fi], ui)
         xj, g1j, g2j = section(fibres[fj], uj)
-        d = math.dist(xi, xj)
-        if d == 0:
-            return
-        n = [(p - q) / d for p, q in zip(xi, xj)]
-        overlap = half_width(g1i, g2i, n, a.radius) + half_width(g1j, g2j, n, a.radius) - d
+        if at_end(fi, ui) or at_end(fj, uj):
+            overlap = (disc_depth(fibres[fi], ui, fibres[fj], uj, a.radius) if at_end(fi, ui)
+                       else disc_depth(fibres[fj], uj, fibres[fi], ui, a.radius))
+        else:
+            d = math.dist(xi, xj)
+            if d == 0:
+                return
+            n = [(p - q) / d for p, q in zip(xi, xj)]
+            # a pair the search left short of the closest points (stopped by its bracket):
+            # n runs along a fibre there, and a section's width along it is not the fibre's
+            if max(abs(sum(x * y for x, y in zip(n, tangent(fibres[f], u))))
+                   for f, u in ((fi, ui), (fj, uj))) > 1e-3:
+                return
+            overlap = half_width(g1i, g2i, n, a.radius) + half_width(g1j, g2j, n, a.radius) - d
         if overlap > best[0]:
             best = (overlap, (fi, ui, xi), (fj, uj, xj))
 
@@ -136,13 +184,11 @@ def main():
             if fi == fj and abs(ei - ej) < a.min_elements:
                 continue
             d = math.dist(xi, xj)
-            if d == 0 or d > reach:
+            if d == 0 or d > min(reach, 2.2 * a.radius):
                 continue
-            consider(fi, ei, fj, ej)
-            if d < 2.2 * a.radius:
-                ui, uj = refine(fibres[fi], ei, fibres[fj], ej, 1 / a.samples)
-                if fi != fj or abs(ui - uj) >= a.min_elements:
-                    consider(fi, ui, fj, uj)
+            ui, uj = refine(fibres[fi], ei, fibres[fj], ej, 1 / a.samples)
+            if fi != fj or abs(ui - uj) >= a.min_elements:
+                consider(fi, ui, fj, uj)
     overlap, A, B = best
     ratio = f" ({overlap / a.pmax:.2f} p_max)" if a.pmax > 0 else ""
     print(f"largest overlap {overlap:.4g} mm{ratio}")

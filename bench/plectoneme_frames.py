@@ -4,7 +4,7 @@
 elements' largest reported penetration (history.csv), the loop's smallest centreline distance
 (points more than 4 elements apart and more than 0.8 element from either end, 8 samples per
 element) and the brute-force overlap (bench/centreline_overlap.py on the frame's nodes and
-directors, without the first and last elements, whose end rims it cannot model). A frame is
+directors, the end discs included). A frame is
 "formed" when self-contact is active and that distance is within 2R + p_max. Prints a row
 every --every frames and the formed count.
 
@@ -55,7 +55,7 @@ def smallest_distance(rows):
 def overlap(rows, radius, pmax):
     with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
         f.write("fibre,x,y,z,g1x,g1y,g1z,g2x,g2y,g2z\n")
-        for r in rows[2:-2]:
+        for r in rows:
             f.write("rod," + ",".join("%.17g" % v for v in r) + "\n")
     here = os.path.dirname(os.path.abspath(__file__))
     out = subprocess.run([sys.executable, os.path.join(here, "centreline_overlap.py"), f.name,

@@ -72,7 +72,7 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
 void checkContactSet(WorldState& w, double t, ContactReport& report) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
-  const Overlap o = trueOverlap(w.fibres, w.fibres.q, w.trial, w.contact);
+  const Overlap o = trueOverlap(w.fibres, w.fibres.q, w.cache.centrelines, w.trial, w.contact);
   report.maxOverlap = o.depth;
   report.maxOverlapRatio = o.ratio;
   report.overlapFibreI = int(o.fibreI), report.overlapFibreJ = int(o.fibreJ);

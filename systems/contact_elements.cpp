@@ -46,24 +46,6 @@ void particles(const Section& I, const Section& J, double RI, double RJ, double 
   }
 }
 
-// End faces: a fibre is a cylinder cut flat at its end sections. When the section S of fibre f
-// at s is one of its ends and the other section's centre c lies beyond that end's plane, the
-// particle is the point of the end face closest to c: the projection of c onto the face, kept
-// within the rim (|xi| <= R). False otherwise.
-bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
-                     double R, double xi[2]) {
-  const double L = fs.length[f], tol = 1e-9 * L;
-  const double outward = s <= tol ? -1 : s >= L - tol ? 1 : 0;
-  if (outward == 0 || (c - S.x0).dot(outward * S.dx0ds.normalized()) <= 1e-9 * R) return false;
-  Eigen::Matrix2d M;
-  M << S.g1.dot(S.g1), S.g1.dot(S.g2), S.g1.dot(S.g2), S.g2.dot(S.g2);
-  const Vec3 d = c - S.x0;
-  Eigen::Vector2d m = M.inverse() * Eigen::Vector2d(S.g1.dot(d), S.g2.dot(d));
-  if (m.norm() > R) m *= R / m.norm();
-  xi[0] = m(0), xi[1] = m(1);
-  return true;
-}
-
 // The other side's particle against an end face at x: J's outline point towards x (kept as it
 // was when x lies on J's axis).
 void facingParticle(const Section& J, double RJ, const Vec3& x, double xi[2]) {
@@ -135,9 +117,9 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, do
 
 // A point element's sections moved to the closest sections near them (systems/contact_sections.h).
 bool closestSections(const Intermediate& g, const Windows& w, double thetaParallel, double sep,
-                     ElementSides& sides, double* curvature = nullptr) {
+                     ElementSides& sides, double* curvature = nullptr, bool ends = false) {
   return closestSectionsNear(g.fs, g.cl, g.I, g.J, w, thetaParallel, sep, sides.sI, sides.sJ,
-                             curvature);
+                             curvature, ends);
 }
 
 // The zeta of a pair of sections along the zone: of sI on I's interval, or of sJ where J's
@@ -233,7 +215,7 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
   std::vector<ElementSides> minima;
   for (ElementSides sides : starts) {
     double lambda = 0;
-    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda)) continue;
+    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda, point)) continue;
     const bool keep = kind == Minima::Narrow
                           ? lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * h
                           : centreDistance(g, sides.sI, sides.sJ) < RR + 2 * pMax;
@@ -343,7 +325,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     ElementSides sides = all[e - first];
     const bool closest =
         atCrossing[e - first] ||
-        (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides));
+        (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides, nullptr, true));
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];

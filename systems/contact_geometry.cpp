@@ -161,4 +161,18 @@ bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, dou
   return true;
 }
 
+bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
+                     double R, double xi[2]) {
+  const double L = fs.length[f], tol = 1e-9 * L;
+  const double outward = s <= tol ? -1 : s >= L - tol ? 1 : 0;
+  if (outward == 0 || (c - S.x0).dot(outward * S.dx0ds.normalized()) <= 1e-9 * R) return false;
+  Eigen::Matrix2d M;
+  M << S.g1.dot(S.g1), S.g1.dot(S.g2), S.g1.dot(S.g2), S.g2.dot(S.g2);
+  const Vec3 d = c - S.x0;
+  Eigen::Vector2d m = M.inverse() * Eigen::Vector2d(S.g1.dot(d), S.g2.dot(d));
+  if (m.norm() > R) m *= R / m.norm();
+  xi[0] = m(0), xi[1] = m(1);
+  return true;
+}
+
 }  // namespace fibra

@@ -147,4 +147,12 @@ bool planeCut(const FibreStore& fs, const CentrelineStore& cl, Index f, const Ve
 // plane (|G m| <= 1e-9 |dir|) or the section is crushed (g1, g2 parallel).
 bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, double xi[2]);
 
+// End faces: a fibre is a cylinder cut flat at its end sections. When the section S of fibre f
+// at s (mm) is one of its ends and the point c (mm) lies beyond that end's plane (by more than
+// 1e-9 R), xi (section coordinates, mm) receives the point of the end
+// face closest to c: the projection G m of c - x0 onto the section plane,
+// m = (G^T G)^-1 G^T (c - x0), kept within the rim (|m| <= R). False (xi untouched) otherwise.
+bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
+                     double R, double xi[2]);
+
 }  // namespace fibra

@@ -2,6 +2,7 @@
 
 #include "systems/contact_geometry.h"
 #include "systems/contact_params.h"
+#include "systems/contact_sections.h"
 #include "systems/facing_particles.h"
 #include "systems/particle.h"
 #include "systems/tool_geometry.h"
@@ -90,29 +91,61 @@ double faceDepth(const Section& S, double R, const Vec3& x) {
   return r > 0 ? halfWidth(S, R, radial / r) - r : halfWidth(S, R, S.g1.normalized());
 }
 
+// The overlap of two fibres near the pair of sections (sI, sJ), mm: at the closest points of
+// their centrelines within one element of the pair (closestSectionsNear: a minimum of the
+// distance, or the distance still falling at a fibre's end, with the fibres not parallel;
+// `seekClosest`), else at the pair. Where one section is an end of its fibre and the other
+// centre lies beyond that end's plane, the end face's point closest to that centre against the
+// other fibre (faceDepth: the rim pressed into its side). Otherwise along n = P_t d / |P_t d|
+// (t the mean tangent, d = x0I - x0J), normal to both fibres at closest points, so that
+// R |G^T n| is each tube's width along it: a pair whose sections lie apart along the fibres is
+// not measured along a direction that runs through a tube lengthwise (a sheared section is
+// wider along such a direction than the tube is across it: 1.54 p_max read where the fibres
+// crossed with 0.82, the plectoneme at t = 0.78, its sections near the clamp sheared 6.6 deg).
+// sI, sJ (mm): in, the pair; out, where the overlap was measured.
+double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                   const ContactParams& params, Index fI, Index fJ, double& sI, double& sJ,
+                   bool seekClosest) {
+  const double hI = elementLength(fs, fI), hJ = elementLength(fs, fJ);
+  const SectionWindows window{std::max(0.0, sI - hI), std::min(fs.length[fI], sI + hI),
+                              std::max(0.0, sJ - hJ), std::min(fs.length[fJ], sJ + hJ)};
+  const double sep = fI == fJ ? params.selfSeparation[fI] : 0;
+  if (seekClosest)
+    closestSectionsNear(fs, cl, fI, fJ, window, params.thetaParallel, sep, sI, sJ, nullptr, true);
+  const Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
+  const double RI = fs.radius[fI], RJ = fs.radius[fJ];
+  double xi[2];
+  if (seekClosest && endFaceParticle(fs, fI, sI, I, J.x0, RI, xi))
+    return faceDepth(J, RJ, I.x0 + xi[0] * I.g1 + xi[1] * I.g2);
+  if (seekClosest && endFaceParticle(fs, fJ, sJ, J, I.x0, RJ, xi))
+    return faceDepth(I, RI, J.x0 + xi[0] * J.g1 + xi[1] * J.g2);
+  const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
+  const Vec3 t = (tI + (tI.dot(tJ) < 0 ? Vec3(-tJ) : tJ)).normalized();
+  Vec3 d = I.x0 - J.x0;
+  if (const Vec3 across = d - d.dot(t) * t; across.norm() > 1e-9 * (RI + RJ)) d = across;
+  const double dist = d.norm();
+  // coincident centres (a full overlap): the width across I's first director
+  const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
+  return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist;
+}
+
 }  // namespace
 
-Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactState& detected,
-                    const ContactParams& params) {
+Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                    const ContactState& detected, const ContactParams& params) {
   const ContactElementStore& el = detected.elements;
   Overlap deepest;
   for (Index e = 0; e < el.size(); ++e) {
     const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
-    const Section I = contactSection(fs, q, fI, el.sI[e]);
-    const Section J = contactSection(fs, q, fJ, el.sJ[e]);
-    const Vec3 oI = el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2, oJ = el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2;
-    const double RI = fs.radius[fI], RJ = fs.radius[fJ];
-    double depth;
-    if (el.fallback[e] & kEndFaceI) {
-      depth = faceDepth(J, RJ, I.x0 + oI);
-    } else if (el.fallback[e] & kEndFaceJ) {
-      depth = faceDepth(I, RI, J.x0 + oJ);
+    double depth, sI = el.sI[e], sJ = el.sJ[e];
+    if (el.fallback[e] & (kEndFaceI | kEndFaceJ)) {
+      const Section I = contactSection(fs, q, fI, el.sI[e]);
+      const Section J = contactSection(fs, q, fJ, el.sJ[e]);
+      depth = el.fallback[e] & kEndFaceI
+                  ? faceDepth(J, fs.radius[fJ], I.x0 + el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2)
+                  : faceDepth(I, fs.radius[fI], J.x0 + el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2);
     } else {
-      const Vec3 d = I.x0 - J.x0;
-      const double dist = d.norm();
-      // coincident centres (a full overlap): the width across I's first director
-      const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
-      depth = halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist -
+      depth = tubeOverlap(fs, q, cl, params, fI, fJ, sI, sJ, !el.forced[e]) -
               forcedAllowance(params, el.forced[e]);
     }
     deepest.depth = std::max(deepest.depth, depth);
@@ -120,7 +153,7 @@ Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Contac
     if (ratio > deepest.ratio) {
       deepest.ratio = ratio;
       deepest.fibreI = fI, deepest.fibreJ = fJ;
-      deepest.sI = el.sI[e], deepest.sJ = el.sJ[e];
+      deepest.sI = sI, deepest.sJ = sJ;
     }
   }
   return deepest;

@@ -14,23 +14,37 @@
 // deepestDetected     the largest penetration of the elements at their detection (or last
 //                     normal update), as a multiple of their zone's p_max.
 // fillContactReport   counts (zones, elements, active, sliding) and the largest penetration.
-// trueOverlap         over the elements of a detection from the state q (closest sections, the
-//                     particles re-located on the deformed outlines): max of w_I + w_J - d, d =
-//                     |x0I - x0J| the distance of the section centres along n = (x0I - x0J) / d,
-//                     w = R |G^T n| the fibre's half-width along n (G = [g1 g2] the deformed
-//                     directors, R the radius in section coordinates): the largest of n . G xi
-//                     over the outline |xi| = R, which is also the width of the union of the
-//                     sections near it, since n is normal to the fibre there. (A section sheared
-//                     by gamma from the normal plane is a disc seen edge-on along its tilt: the
-//                     fibre is R cos gamma wide there; taking the outline point's distance R
-//                     instead over-stated the overlap by R (1 - cos gamma), 0.8 p_max at the
-//                     5-degree shear of a twisted rod in self-contact.) On an end-face element
-//                     (kEndFaceI/J) the face point's depth below the other fibre's surface,
-//                     w - |P_t (x - x0)| with w its half-width along P_t (x - x0); 0 when none
-//                     overlaps; mm. Independent of the elements a state was solved with: it
-//                     measures what they may under-report. A forced element's depth is less
-//                     the overlap its step still allows (ContactParams::forcedAllowance), as
-//                     its gap is.
+// trueOverlap         over the elements of a detection from the state q: the fibres' overlap near
+//                     each element's sections, measured from the centrelines and the deformed
+//                     directors, not from the element's particles or normal. The sections are
+//                     moved to the closest points of the two centrelines within one element
+//                     (systems/contact_sections.h, closestSectionsNear: held at a fibre's end
+//                     where the distance still falls past it), where d = x0I - x0J is normal to
+//                     both fibres; there the overlap is w_I + w_J - |d_t|, d_t = P_t d the part of
+//                     d across the mean tangent t (d itself at closest points; it matters where
+//                     no closest pair is found: parallel fibres, a pair kept where it was),
+//                     along n = d_t / |d_t|, w = R |G^T n| the fibre's half-width along n
+//                     (G = [g1 g2] the deformed directors, R the radius in section
+//                     coordinates): the largest of n . G xi over the outline |xi| = R, which is
+//                     also the width of the union of the sections near it since n is normal to
+//                     the fibre. (Measured at the element's own sections along the centres'
+//                     direction, as before, it read a crossing whose sections lie apart along
+//                     the fibres through a sheared section's length: the plectoneme's loop over
+//                     the clamped end, sections sheared 6.6 deg, 1.54 p_max where the fibres
+//                     crossed with 0.82, and the increment failed as inconsistent. A section
+//                     sheared by gamma from the normal plane is a disc seen edge-on along its
+//                     tilt: the fibre is R cos gamma wide there; taking the outline point's
+//                     distance R instead over-stated the overlap by R (1 - cos gamma), 0.8
+//                     p_max at the 5-degree shear of a twisted rod in self-contact.) Where the
+//                     closest pair ends on a fibre's end and the other centre lies beyond that
+//                     end's plane, and on an end-face element (kEndFaceI/J, at its particle),
+//                     the end face's point's depth below the other fibre's surface,
+//                     w - |P_t (x - x0)| with w its half-width along P_t (x - x0) (the face
+//                     point closest to the other centre: a rim). 0 when none overlaps; mm.
+//                     Independent of the elements a state was solved with: it measures what
+//                     they may under-report. A forced element's depth is at its own sections,
+//                     less the overlap its step still allows (ContactParams::forcedAllowance),
+//                     as its gap is. `centrelines`: the state q's (computed by the detection).
 // compareContactSets  a detection from the accepted state (`fresh`) against the set the state
 //                     was solved with (`used`): zones paired by id; zones without a partner or
 //                     with another element count are counted; elements of paired zones paired
@@ -50,6 +64,7 @@
 //                     tool placed inside the fibres.
 #pragma once
 
+#include "components/contact_cache.h"
 #include "components/contact_params.h"
 #include "components/contact_state.h"
 #include "components/tools.h"
@@ -87,10 +102,11 @@ struct Overlap {
   double depth = 0;                // largest overlap over the elements, mm; 0 when none
   double ratio = 0;                // largest overlap / the element's zone p_max
   Index fibreI = -1, fibreJ = -1;  // the fibres of the element of `ratio`, -1 when none
-  double sI = 0, sJ = 0;           // the reference arc lengths of its sections, mm
+  double sI = 0, sJ = 0;           // the reference arc lengths where it was measured, mm
 };
 Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
-                    const ContactState& detected, const ContactParams& params);
+                    const CentrelineStore& centrelines, const ContactState& detected,
+                    const ContactParams& params);
 
 // Tool `tool`'s deepest overlap with the fibres of state q at pseudo-time t (mm; 0 and element -1
 // when none overlaps it), and where: the element and its parameter z in [-1, 1].

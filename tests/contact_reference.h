@@ -265,12 +265,15 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   // differences of the gradient; kept (a, b moved, true) when it converges inside both brackets
   // (the zone's intervals widened by Delta_prox), with the self-contact separation, at a
   // minimum, with the fibres more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings");
-  // `curvature` receives the smaller eigenvalue of the Hessian there.
+  // with `ends` (point zones), a step past a fibre's end (a bracket bound there) holds that
+  // section at the end while the gradient still points outwards, and goes on in the other;
+  // `curvature` receives the smaller eigenvalue of the Hessian there (the free section's
+  // diagonal with one held).
   const auto bracketOf = [&](Index f, double s1, double s2) {
     return std::pair{std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
   };
   const double sepIJ = I == J ? p.selfSeparation[I] : 0;
-  const auto closestPair = [&](double& sa, double& sb, double& curvature) {
+  const auto closestPair = [&](double& sa, double& sb, double& curvature, bool ends) {
     const auto [aI, bI] = bracketOf(I, z.sI1, z.sI2);
     const auto [aJ, bJ] = bracketOf(J, z.sJ1, z.sJ2);
     const auto gradient = [&](double a, double b) {
@@ -281,21 +284,46 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     const double h = std::min(fs.length[I] / fs.elementCount[I], fs.length[J] / fs.elementCount[J]);
     const double eps = 1e-6 * h;
     Eigen::Vector2d u(sa, sb);
+    const double LI = fs.length[I], LJ = fs.length[J];
+    int endA = 0, endB = 0;  // held at the fibre's start (-1) or end (+1): the distance falls past it
     for (int it = 0; it < 20; ++it) {
       Eigen::Matrix2d H;
-      H.col(0) = (gradient(u(0) + eps, u(1)) - gradient(u(0) - eps, u(1))) / (2 * eps);
-      H.col(1) = (gradient(u(0), u(1) + eps) - gradient(u(0), u(1) - eps)) / (2 * eps);
+      const double cI = std::clamp(u(0), eps, LI - eps), cJ = std::clamp(u(1), eps, LJ - eps);
+      H.col(0) = (gradient(cI + eps, u(1)) - gradient(cI - eps, u(1))) / (2 * eps);
+      H.col(1) = (gradient(u(0), cJ + eps) - gradient(u(0), cJ - eps)) / (2 * eps);
       H = 0.5 * (H + H.transpose()).eval();
-      if (!(H(0, 0) > 0 && H.determinant() > 0)) return false;
-      const Eigen::Vector2d step = -H.ldlt().solve(gradient(u(0), u(1)));
+      const Eigen::Vector2d gr = gradient(u(0), u(1));
+      if (endA && !(endA * gr(0) < 0)) endA = 0;
+      if (endB && !(endB * gr(1) < 0)) endB = 0;
+      Eigen::Vector2d step = Eigen::Vector2d::Zero();
+      if (endA && endB) {
+      } else if (endB) {
+        if (!(H(0, 0) > 0)) return false;
+        step(0) = -gr(0) / H(0, 0);
+      } else if (endA) {
+        if (!(H(1, 1) > 0)) return false;
+        step(1) = -gr(1) / H(1, 1);
+      } else {
+        if (!(H(0, 0) > 0 && H.determinant() > 0)) return false;
+        step = -H.ldlt().solve(gr);
+      }
       u += step;
+      if (ends) {
+        if (u(0) < aI && aI <= 0) u(0) = 0, endA = -1;
+        if (u(0) > bI && bI >= LI) u(0) = LI, endA = 1;
+        if (u(1) < aJ && aJ <= 0) u(1) = 0, endB = -1;
+        if (u(1) > bJ && bJ >= LJ) u(1) = LJ, endB = 1;
+      }
       if (!(u(0) >= aI && u(0) <= bI && u(1) >= aJ && u(1) <= bJ)) return false;
       if (I == J && !(u(1) - u(0) >= sepIJ)) return false;  // self-contact: apart by the separation
       if (step.lpNorm<1>() <= 1e-10 * h) {
         const Vec3 uI = at(fs, q, I, u(0)).dx0ds.normalized(), uJ = at(fs, q, J, u(1)).dx0ds.normalized();
         if (uI.cross(uJ).norm() <= std::sin(p.thetaParallel)) return false;
         sa = u(0), sb = u(1);
-        curvature = H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
+        curvature = endA && endB ? 0
+                    : endB       ? H(0, 0)
+                    : endA       ? H(1, 1)
+                                 : H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
         return true;
       }
     }
@@ -402,7 +430,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     // from there (closestPair below).
     if (closestPoints && !from) {
       double c = 0;
-      if (closestPair(e.sI, e.sJ, c)) curvature = c;
+      if (closestPair(e.sI, e.sJ, c, true)) curvature = c;
     }
     const Section sI = at(fs, q, I, e.sI), sJ = at(fs, q, J, e.sJ);
     const Vec3 tI = sI.dx0ds.normalized(), tJ = sJ.dx0ds.normalized();
@@ -492,7 +520,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     }
     for (Element st : starts) {
       double lambda = 0;
-      if (!closestPair(st.sI, st.sJ, lambda)) continue;
+      if (!closestPair(st.sI, st.sJ, lambda, point)) continue;
       const double d = (at(fs, q, I, st.sI).x0 - at(fs, q, J, st.sJ).x0).norm();
       const bool keep = point ? d < RR + 2 * pMax
                               : lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * hMin;

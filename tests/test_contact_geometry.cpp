@@ -343,3 +343,45 @@ TEST_CASE("a fibre's half-width along a direction normal to it: circle, sheared 
   S.g2 = 1.1 * Vec3::UnitZ();
   CHECK(halfWidth(S, R, Vec3::UnitZ()) == doctest::Approx(1.1 * R));
 }
+
+TEST_CASE("true overlap: crossing fibres with sheared sections, from a pair apart along a fibre") {
+  // I along y with its axis h above J's, J along x (R = 0.1 both); J's sections sheared by gamma
+  // towards its axis, g2 = (sin gamma, 0, cos gamma): J is R cos gamma high, and the fibres
+  // overlap by R + R cos gamma - h, whichever of their sections an element pairs. Moved 0.0075 mm
+  // along J (the plectoneme's loop over its clamped end: gamma 6.6 deg, the pair 0.0074 mm
+  // apart), the pair's centres point through J's tilted disc lengthwise, where it is wider:
+  // measured along them, 1.06e-3 mm for the true 8.4e-4.
+  const double R = 0.1, gamma = 0.115, h = 0.1985;
+  FibreStore fs;
+  fixtures::add(fs, fixtures::polylineFibre("i", R, 4, 2, {Vec3(0, -1, h), Vec3(0, 1, h)}));
+  fixtures::add(fs, fixtures::polylineFibre("j", R, 4, 2, {Vec3(-1, 0, 0), Vec3(1, 0, 0)}));
+  Eigen::VectorXd q = fs.q;
+  for (Index n = fs.firstNode[1]; n < fs.firstNode[1] + fs.nodeCount[1]; ++n)
+    g2Of(q, n) = Vec3(std::sin(gamma), 0, std::cos(gamma));
+  fs.q = q;
+  const ContactParams p = defaults(fs);
+  Detected d;
+  detect(fs, q, p, d);
+  REQUIRE(d.el.size() == 1);
+  const double truth = R + R * std::cos(gamma) - h;
+  ContactState state;
+  state.zones = d.zones;
+  state.elements = d.el;
+  CHECK(trueOverlap(fs, q, d.cache.centrelines, state, p).depth ==
+        doctest::Approx(truth).epsilon(1e-9).scale(0));
+  const double sJ = state.elements.sJ[0];
+  for (const double shift : {-0.0075, 0.0075}) {
+    CAPTURE(shift);
+    state.elements.sJ[0] = sJ + shift;
+    const Overlap o = trueOverlap(fs, q, d.cache.centrelines, state, p);
+    CHECK(o.depth == doctest::Approx(truth).epsilon(1e-9).scale(0));
+    // what the pair's own centres read: over the truth on the side the disc tilts to
+    const Section I = contactSection(fs, q, 0, state.elements.sI[0]);
+    const Section J = contactSection(fs, q, 1, state.elements.sJ[0]);
+    const Vec3 dd = I.x0 - J.x0, n = dd.normalized();
+    const double centres = halfWidth(I, R, n) + halfWidth(J, R, n) - dd.norm();
+    MESSAGE("shift " << shift << ": true " << truth << ", measured " << o.depth
+                     << ", along the pair's centres " << centres);
+    if (shift < 0) CHECK(centres > 1.2 * truth);
+  }
+}

@@ -177,3 +177,46 @@ TEST_CASE("an end face's contact tangent matches finite differences, frictionles
     CHECK((K - Kfd).norm() <= 1e-6 * K.norm());
   }
 }
+
+TEST_CASE("an end whose rim lies under a crossing fibre reports the rim's depth, not the sides'") {
+  // A along x, ending at x = 0; B along y at x = c, its axis 2R - delta above A's: with c > 0
+  // the centrelines come closest past A's end, and the deepest point of A in B is the top of
+  // A's end rim, (0, 0, R), at sqrt(c^2 + (R - delta)^2) from B's axis: a depth of
+  // R - sqrt(c^2 + (R - delta)^2) (1.49e-3 mm for c = 0.01, delta = 0.002). With c < 0, B lies
+  // over A's side before the end: delta. Everything is clamped (the reference state); the
+  // elements' deepest penetration and the acceptance's true overlap must both give that.
+  constexpr double R = 0.1, delta = 0.002;
+  for (const double c : {0.005, 0.01, -0.01}) {
+    CAPTURE(c);
+    const std::string x = std::to_string(c), z = std::to_string(2 * R - delta);
+    const SceneDef scene = loadSceneFromString(R"({
+      "units": "mm-N-MPa",
+      "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+      "fibres": [
+        {"name": "A", "material": "m", "radius": 0.1, "elements": 8,
+         "geometry": {"type": "line", "points": [[-2, 0, 0], [0, 0, 0]], "director": [0, 0, 1]}},
+        {"name": "B", "material": "m", "radius": 0.1, "elements": 8,
+         "geometry": {"type": "line", "points": [[)" + x + ", -1, " + z + "], [" + x + ", 1, " + z + R"(]],
+                      "director": [0, 0, 1]}}],
+      "boundary_conditions": [{"type": "clamp", "group": "A.all"}, {"type": "clamp", "group": "B.all"}],
+      "contact": {"max_penetration": 0.01},
+      "steps": [{"end_time": 1, "increments": 1}]})",
+                                               "rim.json");
+    World w(scene);
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    const double expected = c > 0 ? R - std::hypot(c, R - delta) : delta;
+    const ContactElementStore& el = w.contact().elements;
+    double deepest = 0;
+    int onFace = 0;
+    for (Index e = 0; e < el.size(); ++e) {
+      deepest = std::max(deepest, -el.gap[e]);
+      onFace += (el.fallback[e] & (kEndFaceI | kEndFaceJ)) != 0;
+    }
+    MESSAGE("c " << c << ": depth " << expected << " mm, elements " << deepest << " (" << onFace
+                 << " on the end face), acceptance " << r.contact.maxOverlap);
+    CHECK(deepest == doctest::Approx(expected).epsilon(1e-6).scale(0));
+    CHECK(r.contact.maxOverlap == doctest::Approx(expected).epsilon(1e-6).scale(0));
+    CHECK((onFace >= 1) == (c > 0));
+  }
+}
