@@ -216,6 +216,39 @@ std::string toolLines(const World& world) {
   return out;
 }
 
+// "N fibre(s) (a, b, c, d, ...)": the count and the first four names of fibres (indices).
+std::string fibreList(const World& world, const std::vector<Index>& fibres) {
+  std::string list;
+  for (size_t i = 0; i < fibres.size() && i < 4; ++i)
+    list += (i ? ", " : "") + world.scene().fibres[fibres[i]].name;
+  if (fibres.size() > 4) list += ", ...";
+  return format("%zu fibre%s (%s)", fibres.size(), fibres.size() == 1 ? "" : "s", list.c_str());
+}
+
+// The resolved self-contact separation (components/contact_params.h selfSeparation), "" with
+// self-contact off: once in mm when every fibre has the same, else each value (as printed) with
+// the fibres that have it, or the range over the fibres when there are more than four values.
+std::string selfSeparationLine(const World& world, const ContactParams& c) {
+  if (!c.fibres || !c.selfContact || c.selfSeparation.empty()) return "";
+  std::vector<std::pair<std::string, std::vector<Index>>> values;  // in order of first fibre
+  for (Index f = 0; f < Index(c.selfSeparation.size()); ++f) {
+    const std::string v = format("%g", c.selfSeparation[f]);
+    auto it = std::find_if(values.begin(), values.end(), [&](const auto& e) { return e.first == v; });
+    if (it == values.end()) it = values.insert(values.end(), {v, {}});
+    it->second.push_back(f);
+  }
+  if (values.size() == 1) return "  self-contact separation: " + values[0].first + " mm\n";
+  if (values.size() > 4)
+    return format("  self-contact separation: %g .. %g mm over the fibres\n",
+                  *std::min_element(c.selfSeparation.begin(), c.selfSeparation.end()),
+                  *std::max_element(c.selfSeparation.begin(), c.selfSeparation.end()));
+  std::string out = "  self-contact separation:";
+  for (size_t i = 0; i < values.size(); ++i)
+    out += format("%s %s mm for %s", i ? "," : "", values[i].first.c_str(),
+                  fibreList(world, values[i].second).c_str());
+  return out + "\n";
+}
+
 // The contact choices that change results: the section's values (pair class 0), the laws, the
 // classes and every pair rule's resolved values, forced normals, tools.
 std::string contactLines(const World& world) {
@@ -231,19 +264,10 @@ std::string contactLines(const World& world) {
                   c.followCrossings ? ", crossings follow the closest points" : "",
                   c.facingParticles ? ", frictionless forces on facing particles"
                                     : ", frictionless forces on material particles (the paper's)");
-  out += lawLine(c);
+  out += selfSeparationLine(world, c) + lawLine(c);
   if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(world, c);
   if (c.tools) out += toolLines(world);
   return out;
-}
-
-// "N fibre(s) (a, b, c, d, ...)": the count and the first four names of fibres (indices).
-std::string fibreList(const World& world, const std::vector<Index>& fibres) {
-  std::string list;
-  for (size_t i = 0; i < fibres.size() && i < 4; ++i)
-    list += (i ? ", " : "") + world.scene().fibres[fibres[i]].name;
-  if (fibres.size() > 4) list += ", ...";
-  return format("%zu fibre%s (%s)", fibres.size(), fibres.size() == 1 ? "" : "s", list.c_str());
 }
 
 // The fibres whose spin only friction holds (engine/free_spin.h), as a note.

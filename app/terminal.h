@@ -12,10 +12,11 @@ namespace fibra::terminal {
 enum class Verbosity { Quiet, Normal, Verbose };  // errors and summary; + increments; + iterations
 
 // Problem size and derived parameters: fibres, nodes, elements, DOFs, steps and increments,
-// contact (the section's resolved p_max, mu, angles, loops; the laws: penalty bounds, initial
-// penalty, p_reg, g_T,max, friction tangent, element placement; the fibres' contact classes and
-// each contact.pairs rule's mu, p_max and penalty bounds; the steps with forced normals), tools,
-// threads. Each line starts with "  " after a first line "fibra VERSION: SCENE".
+// contact (the section's resolved p_max, mu, angles, loops, self-contact separation; the laws:
+// penalty bounds, initial penalty, p_reg, g_T,max, friction tangent, element placement; the
+// fibres' contact classes and each contact.pairs rule's mu, p_max and penalty bounds; the steps
+// with forced normals), tools, threads. Each line starts with "  " after a first line
+// "fibra VERSION: SCENE".
 std::string describeProblem(const World& world, const std::string& scene, int threads);
 
 // The start warnings of describeProblem alone (a tool placed inside the fibres, a first forced

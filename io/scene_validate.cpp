@@ -4,6 +4,7 @@
 // degrees, a tool's direction as its "normal" or "axis".
 #include "io/scene_validate.h"
 
+#include "engine/fibre_builder.h"
 #include "engine/group_order.h"
 #include "io/json_reader.h"
 #include "io/validate_checks.h"
@@ -428,6 +429,31 @@ void validateContact(const ContactDef& c) {
                                             "], got " + std::to_string(c.normalAcceleration));
 }
 
+// The self-contact separation, when given: only with self-contact on (off, it would have no
+// effect: a likely mistake), and below the shortest fibre's length (self-contact pairs points of
+// one fibre at least the separation apart along it, so a fibre no longer than it never touches
+// itself: a loop would pass through itself unseen).
+void validateSelfContact(const SceneDef& s) {
+  const ContactDef& c = s.contact;
+  const double sep = c.selfContactSeparation;
+  const std::string field = "contact.self_contact_separation";
+  if (std::isnan(sep) || s.fibres.empty()) return;
+  if (!c.selfContact)
+    fail(field, "given (" + num(sep) + " mm) while self_contact is off (false, or absent: its "
+                "default), where it has no effect; set \"self_contact\": true, or remove the "
+                "separation");
+  std::vector<double> lengths;
+  for (const FibreDef& f : s.fibres) lengths.push_back(geometryLength(f.geometry));
+  const size_t shortest = size_t(std::min_element(lengths.begin(), lengths.end()) - lengths.begin());
+  const double L = lengths[shortest];
+  if (!(sep < L))
+    fail(field, "must be less than the shortest fibre's length, " + num(L) + " mm (fibre '" +
+                    s.fibres[shortest].name + "'), got " + num(sep) +
+                    ": with self-contact on, no two points of that fibre are that far apart along "
+                    "it, so it would pass through itself unseen; give a separation below " +
+                    num(L) + " mm, or leave it out for the derived default");
+}
+
 void validateTools(const SceneDef& s) {
   uniqueNames(s.tools, "tools");
   for (size_t i = 0; i < s.tools.size(); ++i) {
@@ -530,6 +556,7 @@ void validateScene(const SceneDef& s) {
   validateSteps(s);
   validateContact(s.contact);
   validateContactScale(s);
+  validateSelfContact(s);
   validateTools(s);
   validateStabilisation(s.stabilisation, fibres);
   validateSolver(s.solver);

@@ -486,3 +486,48 @@ TEST_CASE("fibra check names neo-Hookean fibres and the continuation, run says w
                              R"("failure", damping 0.01\)$)") == 1);
   CHECK(countLines(r.output, R"(damping on at t = [0-9.]+: )") == 1);
 }
+
+TEST_CASE("fibra check prints the resolved self-contact separation, per fibre where it differs") {
+  // Parallel fibres of 10 mm in 40 elements (h = 0.25 mm): the derived separation is
+  // max(6 R, h) per fibre (engine/contact_setup.cpp), a given one max(it, h).
+  TempDir scratch("cli_self_separation");
+  std::filesystem::create_directories(scratch.path());
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "units": "mm-N-MPa",
+    "materials": [{"name": "m", "young_modulus": 4000}],
+    "fibres": [],
+    "boundary_conditions": [{"type": "clamp", "group": "a.start"}],
+    "steps": [{"end_time": 1}],
+    "contact": {"self_contact": true}
+  })");
+  const auto fibres = [&](const std::vector<double>& radii) {
+    j["fibres"] = nlohmann::json::array();
+    for (size_t i = 0; i < radii.size(); ++i)
+      j["fibres"].push_back({{"name", std::string(1, char('a' + i))}, {"material", "m"},
+                             {"radius", radii[i]}, {"elements", 40},
+                             {"geometry", {{"type", "line"},
+                                           {"points", {{0, 2.0 * i, 0}, {10, 2.0 * i, 0}}}}}});
+  };
+  const auto separationLines = [&](const char* name) {
+    writeFile(scratch / name, j.dump());
+    const RunResult r = runFibra({"check", scratch / name}, scratch);
+    REQUIRE_MESSAGE(r.status == 0, r.output);
+    std::string lines;
+    std::istringstream in(r.output);
+    for (std::string line; std::getline(in, line);)
+      if (line.find("self-contact separation") != std::string::npos) lines += line + "\n";
+    return lines;
+  };
+  fibres({0.1, 0.1});
+  CHECK(separationLines("same.json") == "  self-contact separation: 0.6 mm\n");
+  fibres({0.05, 0.1, 0.02, 0.05});  // 0.3, 0.6 and h = 0.25 (above 6 R = 0.12)
+  CHECK(separationLines("per_fibre.json") ==
+        "  self-contact separation: 0.3 mm for 2 fibres (a, d), 0.6 mm for 1 fibre (b), 0.25 mm "
+        "for 1 fibre (c)\n");
+  fibres({0.05, 0.06, 0.07, 0.08, 0.09});  // five values: their range
+  CHECK(separationLines("range.json") == "  self-contact separation: 0.3 .. 0.54 mm over the fibres\n");
+  j["contact"]["self_contact_separation"] = 2;
+  CHECK(separationLines("given.json") == "  self-contact separation: 2 mm\n");
+  j["contact"] = {{"self_contact", false}};
+  CHECK(separationLines("off.json").empty());
+}

@@ -73,6 +73,40 @@ TEST_CASE("fibra: a bad scene exits 2 with file, field and reason, and creates n
   CHECK_FALSE(fs::exists(scratch / "out"));
 }
 
+TEST_CASE("fibra: a self-contact separation that would have no effect exits 2 from run and check") {
+  TempDir scratch("cli_self_separation");
+  fs::create_directories(scratch.path());
+  Json j = sampleJson("cantilever");  // one fibre, 'beam', 10 mm long
+  j["contact"] = {{"self_contact", true}, {"self_contact_separation", 100}};
+  const std::string longer = scratch / "longer.json";
+  writeFile(longer, j.dump());
+  j["contact"] = {{"self_contact_separation", 0.5}};
+  const std::string off = scratch / "off.json";
+  writeFile(off, j.dump());
+  const std::pair<std::string, std::string> cases[] = {
+      {longer,
+       "must be less than the shortest fibre's length, 10 mm (fibre 'beam'), got 100: with "
+       "self-contact on, no two points of that fibre are that far apart along it, so it would pass "
+       "through itself unseen; give a separation below 10 mm, or leave it out for the derived "
+       "default"},
+      {off,
+       "given (0.5 mm) while self_contact is off (false, or absent: its default), where it has no "
+       "effect; set \"self_contact\": true, or remove the separation"},
+  };
+  for (const auto& [scene, reason] : cases) {
+    CAPTURE(scene);
+    const std::string expected =
+        "fibra: error: " + scene + ": contact.self_contact_separation: " + reason + "\n";
+    const RunResult r = runFibra({"run", scene, "--out", scratch / "out"}, scratch);
+    CHECK(r.status == 2);
+    CHECK(r.output == expected);
+    CHECK_FALSE(fs::exists(scratch / "out"));
+    const RunResult c = runFibra({"check", scene}, scratch);
+    CHECK(c.status == 2);
+    CHECK(c.output == expected);
+  }
+}
+
 TEST_CASE("fibra describe prints the scene's stages, a bad scene or a bad call exits 2") {
   TempDir scratch("cli_describe");
   const RunResult r = runFibra({"describe", sourcePath("samples/roller_drag.json")}, scratch);

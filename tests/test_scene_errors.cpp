@@ -363,3 +363,48 @@ TEST_CASE("scene errors: a repeated key is found wherever it is") {
   CHECK(errorOf([&] { loadSceneFromString(text, "r.json"); }) ==
         "r.json: steps[1].increments: duplicate field");
 }
+
+TEST_CASE("scene errors: a self-contact separation not below the shortest fibre's length") {
+  // Self-contact pairs points of one fibre at least the separation apart along it: 100 mm on
+  // fibres of 10 and 8.25 mm left the loop no self-contact at all, silently.
+  const auto withSeparation = [](double separation) {
+    return errorAfter([&](Json& j) {
+      j["fibres"].push_back(j["fibres"][0]);
+      j["fibres"][1]["name"] = "loop";
+      j["fibres"][1]["geometry"]["points"] = {{0, 1, 0}, {8.25, 1, 0}};
+      j["contact"] = {{"self_contact", true}, {"self_contact_separation", separation}};
+    });
+  };
+  const std::string tail =
+      ": with self-contact on, no two points of that fibre are that far apart along it, so it "
+      "would pass through itself unseen; give a separation below 8.25 mm, or leave it out for the "
+      "derived default";
+  CHECK(withSeparation(100) ==
+        "s.json: contact.self_contact_separation: must be less than the shortest fibre's length, "
+        "8.25 mm (fibre 'loop'), got 100" + tail);
+  CHECK(withSeparation(8.25) ==
+        "s.json: contact.self_contact_separation: must be less than the shortest fibre's length, "
+        "8.25 mm (fibre 'loop'), got 8.25" + tail);
+  CHECK(withSeparation(8.2) == "(no error)");
+  // A helix's length is its arc length: 2 turns of radius 0.5 and pitch 0 are 6.28 mm.
+  CHECK(errorAfter([](Json& j) {
+          j["fibres"][0]["geometry"] = {{"type", "helix"}, {"radius", 0.5}, {"pitch", 0}, {"turns", 2}};
+          j["contact"] = {{"self_contact", true}, {"self_contact_separation", 7}};
+        }).starts_with("s.json: contact.self_contact_separation: must be less than the shortest "
+                       "fibre's length, 6.28319 mm (fibre 'b'), got 7: "));
+}
+
+TEST_CASE("scene errors: a self-contact separation given with self-contact off") {
+  const std::string expected =
+      "s.json: contact.self_contact_separation: given (0.5 mm) while self_contact is off (false, "
+      "or absent: its default), where it has no effect; set \"self_contact\": true, or remove the "
+      "separation";
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"self_contact_separation", 0.5}}; }) == expected);
+  CHECK(errorAfter([](Json& j) {
+          j["contact"] = {{"self_contact", false}, {"self_contact_separation", 0.5}};
+        }) == expected);
+  CHECK(errorAfter([](Json& j) {
+          j["contact"] = {{"self_contact", true}, {"self_contact_separation", 0.5}};
+        }) == "(no error)");
+  CHECK(errorAfter([](Json& j) { j["contact"] = {{"self_contact", false}}; }) == "(no error)");
+}
