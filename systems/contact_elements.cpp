@@ -195,8 +195,23 @@ void forcedParticles(const Section& I, const Section& J, double RI, double RJ, c
 // zone's linear map (sI(zeta_k), sJ(zeta_k)), zeta_k = k / n, n = ceil(8 L_int / h_min) within
 // [4, 256] (point zones: every k; long zones, for their cost: the k where the fibres make more
 // than theta_parallel, as closestSections keeps no minimum elsewhere); distinct
-// (|dsI| + |dsJ| > h_min / 20); ordered along the zone.
+// (|dsI| + |dsJ| > h_min / 20); ordered along the zone. Fibre ends bound the search (an end-held
+// minimum: the closest approach lies past an end); in a long zone one is kept where the fibres
+// make more than theta_cross there (a crossing over an end), not narrowness (which a held
+// section does not measure), nor below (converging line contacts end there).
 enum class Minima { Narrow, Touching };
+
+// Whether a pair of sections lies at an end of either fibre (a minimum held there).
+bool atEnd(const Intermediate& g, const ElementSides& s) {
+  return s.sI <= 0 || s.sI >= g.fs.length[g.I] || s.sJ <= 0 || s.sJ >= g.fs.length[g.J];
+}
+
+// |t_I x t_J| at a pair of sections: the sine of the fibres' angle there.
+double crossingAt(const Intermediate& g, const ElementSides& s) {
+  const Vec3 tI = centrelineAt(g.fs, g.cl, g.I, s.sI).dxds.normalized();
+  const Vec3 tJ = centrelineAt(g.fs, g.cl, g.J, s.sJ).dxds.normalized();
+  return tI.cross(tJ).norm();
+}
 
 std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
                                      const ContactParams& p, double sep, double L, Minima kind) {
@@ -212,12 +227,14 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
     const Vec3 tJ = centrelineAt(g.fs, g.cl, g.J, sJ).dxds.normalized();
     if (point || tI.cross(tJ).norm() > sinParallel) starts.push_back({sI, sJ, 0});
   }
+  const double sinCross = std::sin(p.thetaCross);
   std::vector<ElementSides> minima;
   for (ElementSides sides : starts) {
     double lambda = 0;
-    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda, point)) continue;
+    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda, true)) continue;
     const bool keep = kind == Minima::Narrow
-                          ? lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * h
+                          ? atEnd(g, sides) ? crossingAt(g, sides) > sinCross
+                                            : lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * h
                           : centreDistance(g, sides.sI, sides.sJ) < RR + 2 * pMax;
     const bool known = std::any_of(minima.begin(), minima.end(), [&](const ElementSides& m) {
       return std::abs(m.sI - sides.sI) + std::abs(m.sJ - sides.sJ) <= h / 20;

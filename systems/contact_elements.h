@@ -55,11 +55,12 @@
 //   Minima of a zone: the local minima of the centreline distance, by the Newton above from the
 //     eq. 8 sections at zeta = 1/2 and from the zone's linear map at zeta = k / n (n = ceil(8
 //     L_int / h_min) in [4, 256]; long zones only where the fibres cross, |t_I x t_J| >
-//     sin theta_parallel); in a point zone a minimum past a fibre's end is sought at that end
-//     (the end section held, systems/contact_sections.h), so an end's rim under a crossing fibre
-//     gets an element on its end face (long zones, line contacts, keep their elements' places).
-//     A long zone's narrow ones (the patch a penetration p_max spans shorter than the element
-//     spacing) each take the nearest element; a point zone has an
+//     sin theta_parallel); a minimum past a fibre's end is sought at that end (the end section
+//     held, systems/contact_sections.h), so an end's rim under a crossing fibre gets an element
+//     on its end face. A long zone's narrow ones (the patch a penetration p_max spans shorter
+//     than the element spacing) and its end-held ones where the fibres make more than
+//     theta_cross (not a line contact's converging end) each take the nearest element; a point
+//     zone has an
 //     element at each of its minima whose centres lie within R_I + R_J + 2 p_max (L_int / m each
 //     for m of them; none: its one element from zeta = 1/2 as above): a strand bent round
 //     another more tightly than their distance comes closest to it twice, and one element at one

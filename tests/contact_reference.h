@@ -266,7 +266,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   // differences of the gradient; kept (a, b moved, true) when it converges inside both brackets
   // (the zone's intervals widened by Delta_prox), with the self-contact separation, at a
   // minimum, with the fibres more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings");
-  // with `ends` (point zones), a step past a fibre's end (a bracket bound there) holds that
+  // with `ends` (the zones' minima and point elements), a step past a fibre's end (a bracket bound there) holds that
   // section at the end while the gradient still points outwards, and goes on in the other;
   // `curvature` receives the smaller eigenvalue of the Hessian there (the free section's
   // diagonal with one held).
@@ -546,7 +546,8 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   // zeta = k / n, n = ceil(8 L_int / h_min) in [4, 256] (point zones: every k; long zones: where
   // the fibres make more than theta_parallel); distinct (|dsI| + |dsJ| > h_min / 20); kept in a
   // point zone when the centres lie within R_I + R_J + 2 p_max, in a long zone when the patch a
-  // penetration p_max spans, 2 sqrt(2 (R_I + R_J) p_max / lambda_min), is shorter than h_min / 2.
+  // penetration p_max spans, 2 sqrt(2 (R_I + R_J) p_max / lambda_min), is shorter than h_min / 2,
+  // or, held at a fibre's end, when the fibres make more than theta_cross there.
   const double pMax = p.pairs.pMax[pairClass(p, I, J)], RR = fs.radius[I] + fs.radius[J];
   const bool point = placed.size() == 1;
   const bool onI = std::abs(dI) >= std::abs(dJ);
@@ -564,10 +565,13 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     }
     for (Element st : starts) {
       double lambda = 0;
-      if (!closestPair(st.sI, st.sJ, lambda, point)) continue;
+      if (!closestPair(st.sI, st.sJ, lambda, true)) continue;
       const double d = (at(fs, q, I, st.sI).x0 - at(fs, q, J, st.sJ).x0).norm();
-      const bool keep = point ? d < RR + 2 * pMax
-                              : lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * hMin;
+      const bool atEnd = st.sI <= 0 || st.sI >= fs.length[I] || st.sJ <= 0 || st.sJ >= fs.length[J];
+      const double sinAngle = at(fs, q, I, st.sI).dx0ds.normalized().cross(at(fs, q, J, st.sJ).dx0ds.normalized()).norm();
+      const bool keep = point   ? d < RR + 2 * pMax
+                        : atEnd ? sinAngle > std::sin(p.thetaCross)
+                                : lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * hMin;
       bool known = false;
       for (const Element& m : minima) known = known || std::abs(m.sI - st.sI) + std::abs(m.sJ - st.sJ) <= hMin / 20;
       if (keep && !known) minima.push_back(st);
