@@ -117,9 +117,9 @@ ElementSides sectionsAt(const Intermediate& g, double zeta, const Windows& w, do
 
 // A point element's sections moved to the closest sections near them (systems/contact_sections.h).
 bool closestSections(const Intermediate& g, const Windows& w, double thetaParallel, double sep,
-                     ElementSides& sides, double* curvature = nullptr, bool ends = false) {
+                     ElementSides& sides, double* curvature = nullptr) {
   return closestSectionsNear(g.fs, g.cl, g.I, g.J, w, thetaParallel, sep, sides.sI, sides.sJ,
-                             curvature, ends);
+                             curvature);
 }
 
 // The zeta of a pair of sections along the zone: of sI on I's interval, or of sJ where J's
@@ -231,7 +231,7 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
   std::vector<ElementSides> minima;
   for (ElementSides sides : starts) {
     double lambda = 0;
-    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda, true)) continue;
+    if (!closestSections(g, w, p.thetaParallel, sep, sides, &lambda)) continue;
     const bool keep = kind == Minima::Narrow
                           ? atEnd(g, sides) ? crossingAt(g, sides) > sinCross
                                             : lambda > 0 && 2 * std::sqrt(2 * RR * pMax / lambda) < 0.5 * h
@@ -342,7 +342,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     ElementSides sides = all[e - first];
     const bool closest =
         atCrossing[e - first] ||
-        (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides, nullptr, true));
+        (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides));
     const Section I = contactSection(fs, q, g.I, sides.sI);
     const Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];

@@ -111,7 +111,7 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
                               std::max(0.0, sJ - hJ), std::min(fs.length[fJ], sJ + hJ)};
   const double sep = fI == fJ ? params.selfSeparation[fI] : 0;
   if (seekClosest)
-    closestSectionsNear(fs, cl, fI, fJ, window, params.thetaParallel, sep, sI, sJ, nullptr, true);
+    closestSectionsNear(fs, cl, fI, fJ, window, params.thetaParallel, sep, sI, sJ);
   const Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
   const double RI = fs.radius[fI], RJ = fs.radius[fJ];
   double xi[2];

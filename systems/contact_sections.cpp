@@ -49,7 +49,7 @@ bool nearestSectionsInPlane(const FibreStore& fs, const CentrelineStore& cl, Ind
 
 bool closestSectionsNear(const FibreStore& fs, const CentrelineStore& cl, Index I, Index J,
                          const SectionWindows& w, double thetaParallel, double sep, double& sI,
-                         double& sJ, double* curvature, bool ends) {
+                         double& sJ, double* curvature) {
   const double h = std::min(elementLength(fs, I), elementLength(fs, J));
   const double LI = fs.length[I], LJ = fs.length[J];
   double uI = sI, uJ = sJ;
@@ -80,12 +80,10 @@ bool closestSectionsNear(const FibreStore& fs, const CentrelineStore& cl, Index 
     uI += dI, uJ += dJ;
     // Past a fibre's end (a window bound there): held at the end; past a window bound inside
     // the fibre: no minimum here.
-    if (ends) {
-      if (uI < w.aI && w.aI <= 0) uI = 0, endI = -1;
-      if (uI > w.bI && w.bI >= LI) uI = LI, endI = 1;
-      if (uJ < w.aJ && w.aJ <= 0) uJ = 0, endJ = -1;
-      if (uJ > w.bJ && w.bJ >= LJ) uJ = LJ, endJ = 1;
-    }
+    if (uI < w.aI && w.aI <= 0) uI = 0, endI = -1;
+    if (uI > w.bI && w.bI >= LI) uI = LI, endI = 1;
+    if (uJ < w.aJ && w.aJ <= 0) uJ = 0, endJ = -1;
+    if (uJ > w.bJ && w.bJ >= LJ) uJ = LJ, endJ = 1;
     if (!(uI >= w.aI && uI <= w.bI && uJ >= w.aJ && uJ <= w.bJ)) return false;
     if (I == J && !(uJ - uI >= sep)) return false;  // self-contact: apart by the separation
     if (std::abs(dI) + std::abs(dJ) <= 1e-10 * h) {

@@ -266,15 +266,15 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   // differences of the gradient; kept (a, b moved, true) when it converges inside both brackets
   // (the zone's intervals widened by Delta_prox), with the self-contact separation, at a
   // minimum, with the fibres more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings");
-  // with `ends` (the zones' minima and point elements), a step past a fibre's end (a bracket bound there) holds that
-  // section at the end while the gradient still points outwards, and goes on in the other;
+  // a step past a fibre's end (a bracket bound there) holds that section at the end while the
+  // gradient still points outwards, and goes on in the other;
   // `curvature` receives the smaller eigenvalue of the Hessian there (the free section's
   // diagonal with one held).
   const auto bracketOf = [&](Index f, double s1, double s2) {
     return std::pair{std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
   };
   const double sepIJ = I == J ? p.selfSeparation[I] : 0;
-  const auto closestPair = [&](double& sa, double& sb, double& curvature, bool ends) {
+  const auto closestPair = [&](double& sa, double& sb, double& curvature) {
     const auto [aI, bI] = bracketOf(I, z.sI1, z.sI2);
     const auto [aJ, bJ] = bracketOf(J, z.sJ1, z.sJ2);
     const auto gradient = [&](double a, double b) {
@@ -309,12 +309,10 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         step = -H.ldlt().solve(gr);
       }
       u += step;
-      if (ends) {
-        if (u(0) < aI && aI <= 0) u(0) = 0, endA = -1;
-        if (u(0) > bI && bI >= LI) u(0) = LI, endA = 1;
-        if (u(1) < aJ && aJ <= 0) u(1) = 0, endB = -1;
-        if (u(1) > bJ && bJ >= LJ) u(1) = LJ, endB = 1;
-      }
+      if (u(0) < aI && aI <= 0) u(0) = 0, endA = -1;
+      if (u(0) > bI && bI >= LI) u(0) = LI, endA = 1;
+      if (u(1) < aJ && aJ <= 0) u(1) = 0, endB = -1;
+      if (u(1) > bJ && bJ >= LJ) u(1) = LJ, endB = 1;
       if (!(u(0) >= aI && u(0) <= bI && u(1) >= aJ && u(1) <= bJ)) return false;
       if (I == J && !(u(1) - u(0) >= sepIJ)) return false;  // self-contact: apart by the separation
       if (step.lpNorm<1>() <= 1e-10 * h) {
@@ -431,7 +429,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     // from there (closestPair below).
     if (closestPoints && !from) {
       double c = 0;
-      if (closestPair(e.sI, e.sJ, c, true)) curvature = c;
+      if (closestPair(e.sI, e.sJ, c)) curvature = c;
     }
     const Section sI = at(fs, q, I, e.sI), sJ = at(fs, q, J, e.sJ);
     const Vec3 tI = sI.dx0ds.normalized(), tJ = sJ.dx0ds.normalized();
@@ -565,7 +563,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     }
     for (Element st : starts) {
       double lambda = 0;
-      if (!closestPair(st.sI, st.sJ, lambda, true)) continue;
+      if (!closestPair(st.sI, st.sJ, lambda)) continue;
       const double d = (at(fs, q, I, st.sI).x0 - at(fs, q, J, st.sJ).x0).norm();
       const bool atEnd = st.sI <= 0 || st.sI >= fs.length[I] || st.sJ <= 0 || st.sJ >= fs.length[J];
       const double sinAngle = at(fs, q, I, st.sI).dx0ds.normalized().cross(at(fs, q, J, st.sJ).dx0ds.normalized()).norm();
