@@ -147,11 +147,11 @@ void particlesWithEndFaces(const FibreStore& fs, const Intermediate& g, const El
                            std::uint8_t& flags) {
   particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
   double xiE[2];
-  if (endFaceParticle(fs, g.I, sides.sI, I, J, fs.radius[g.I], xiE)) {
+  if (endFaceParticle(fs, g.I, sides.sI, I, J.x0, fs.radius[g.I], xiE)) {
     xiI[0] = xiE[0], xiI[1] = xiE[1];
     facingParticle(J, fs.radius[g.J], I.x0 + xiE[0] * I.g1 + xiE[1] * I.g2, xiJ);
     flags |= kEndFaceI;
-  } else if (endFaceParticle(fs, g.J, sides.sJ, J, I, fs.radius[g.J], xiE)) {
+  } else if (endFaceParticle(fs, g.J, sides.sJ, J, I.x0, fs.radius[g.J], xiE)) {
     xiJ[0] = xiE[0], xiJ[1] = xiE[1];
     facingParticle(I, fs.radius[g.I], J.x0 + xiE[0] * J.g1 + xiE[1] * J.g2, xiI);
     flags |= kEndFaceJ;

@@ -1,7 +1,5 @@
 #include "systems/contact_geometry.h"
 
-#include <Eigen/Eigenvalues>
-
 #include <limits>
 #include <tuple>
 
@@ -163,40 +161,8 @@ bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, dou
   return true;
 }
 
-Eigen::Vector2d discPointNearestLine(const Section& S, double R, const Vec3& c, const Vec3& t,
-                                     const Eigen::Vector2d& m) {
-  Eigen::Matrix<double, 3, 2> G;
-  G << S.g1, S.g2;
-  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - t * t.transpose();
-  const Eigen::Matrix2d A = G.transpose() * P * G;
-  const Eigen::Vector2d b = -G.transpose() * (P * (S.x0 - c));
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(A);
-  const double l1 = eig.eigenvalues()(1), l2 = eig.eigenvalues()(0);  // l1 >= l2 >= 0
-  const Eigen::Vector2d v1 = eig.eigenvectors().col(1), v2 = eig.eigenvectors().col(0);
-  if (!(l1 > 0)) return m;  // the axis along the disc's normal: every point as near
-  if (l2 <= kFlatDisc * l1) {
-    // Q depends on v1 . xi alone: its value c1, then the point of that chord nearest m.
-    const double c1 = v1.dot(b) / l1;
-    if (std::abs(c1) >= R) return (c1 > 0 ? R : -R) * v1;
-    const double half = std::sqrt(R * R - c1 * c1), c2 = std::clamp(v2.dot(m), -half, half);
-    return c1 * v1 + c2 * v2;
-  }
-  const auto at = [&](double mu) {
-    return Eigen::Vector2d(v1 * (v1.dot(b) / (l1 + mu)) + v2 * (v2.dot(b) / (l2 + mu)));
-  };
-  if (at(0).norm() <= R) return at(0);
-  double lo = 0, hi = b.norm() / R;  // |xi(hi)| <= |b| / hi = R
-  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
-    const double mu = 0.5 * (lo + hi);
-    (at(mu).norm() > R ? lo : hi) = mu;
-  }
-  const Eigen::Vector2d xi = at(hi);
-  return xi * (R / xi.norm());
-}
-
-bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Section& O,
+bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
                      double R, double xi[2]) {
-  const Vec3& c = O.x0;
   const double L = fs.length[f], tol = 1e-9 * L;
   const double outward = s <= tol ? -1 : s >= L - tol ? 1 : 0;
   if (outward == 0 || (c - S.x0).dot(outward * S.dx0ds.normalized()) <= 1e-9 * R) return false;
@@ -205,9 +171,6 @@ bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, 
   const Vec3 d = c - S.x0;
   Eigen::Vector2d m = M.inverse() * Eigen::Vector2d(S.g1.dot(d), S.g2.dot(d));
   if (m.norm() > R) m *= R / m.norm();
-  // The other fibre's tangent line stands for its axis only abreast of its section.
-  const Vec3 t = O.dx0ds.normalized();
-  if (std::abs((S.x0 - c).dot(t)) <= 2 * R) m = discPointNearestLine(S, R, c, t, m);
   xi[0] = m(0), xi[1] = m(1);
   return true;
 }

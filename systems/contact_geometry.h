@@ -147,30 +147,12 @@ bool planeCut(const FibreStore& fs, const CentrelineStore& cl, Index f, const Ve
 // plane (|G m| <= 1e-9 |dir|) or the section is crushed (g1, g2 parallel).
 bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, double xi[2]);
 
-// The point of section S's disc |xi| <= R (x = x0 + G xi, G = [g1 g2]; R, xi in mm) nearest the
-// line through c (mm) along the unit t: the minimum of the convex quadratic
-//   Q(xi) = |P (x0 - c + G xi)|^2,  P = I - t t^T,  A = G^T P G = l1 v1 v1^T + l2 v2 v2^T,
-// over the disc. When l2 <= kFlatDisc l1 (the line parallel to the disc) Q depends on v1 . xi
-// alone: that value, and along v2 the point nearest m (m: the tie-break, in the disc). Else the
-// stationary point A^-1 b (b = -G^T P (x0 - c)) inside the disc, or the rim point where
-// (A + mu I) xi = b, mu > 0 (a convex quadratic's minimum on a disc; |xi(mu)| falls with mu),
-// mu by bisection. An axis along the disc's normal (A = 0): m.
-constexpr double kFlatDisc = 1e-6;
-Eigen::Vector2d discPointNearestLine(const Section& S, double R, const Vec3& c, const Vec3& t,
-                                     const Eigen::Vector2d& m);
-
 // End faces: a fibre is a cylinder cut flat at its end sections. When the section S of fibre f
-// at s (mm) is one of its ends and the other fibre's section O has its centre c beyond that
-// end's plane (by more than 1e-9 R), xi (section coordinates, mm) receives the point of the end
-// face deepest in the other fibre: the face point nearest O's axis, the line through c along
-// its tangent (discPointNearestLine; ties, an axis parallel to the face, resolved towards the
-// projection G m of c - x0 onto the face, m = (G^T G)^-1 G^T (c - x0) kept within the rim),
-// where the face's centre lies abreast of O (within 2 R along O's tangent: further away, the
-// tangent line is no measure of a curved fibre's axis, and a strand's end 0.5 mm from a loop
-// read 0.073 mm of penetration where the fibres overlapped by 7.9e-4); m otherwise. (The
-// projection alone put a tilted face's particle off its lowest rim point.) False (xi
-// untouched) otherwise.
-bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Section& O,
+// at s (mm) is one of its ends and the point c (mm) lies beyond that end's plane (by more than
+// 1e-9 R), xi (section coordinates, mm) receives the point of the end
+// face closest to c: the projection G m of c - x0 onto the section plane,
+// m = (G^T G)^-1 G^T (c - x0), kept within the rim (|m| <= R). False (xi untouched) otherwise.
+bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
                      double R, double xi[2]);
 
 }  // namespace fibra

@@ -115,9 +115,9 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
   const Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
   const double RI = fs.radius[fI], RJ = fs.radius[fJ];
   double xi[2];
-  if (seekClosest && endFaceParticle(fs, fI, sI, I, J, RI, xi))
+  if (seekClosest && endFaceParticle(fs, fI, sI, I, J.x0, RI, xi))
     return faceDepth(J, RJ, I.x0 + xi[0] * I.g1 + xi[1] * I.g2);
-  if (seekClosest && endFaceParticle(fs, fJ, sJ, J, I, RJ, xi))
+  if (seekClosest && endFaceParticle(fs, fJ, sJ, J, I.x0, RJ, xi))
     return faceDepth(I, RI, J.x0 + xi[0] * J.g1 + xi[1] * J.g2);
   const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
   const Vec3 t = (tI + (tI.dot(tJ) < 0 ? Vec3(-tJ) : tJ)).normalized();

@@ -18,7 +18,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <tuple>
 #include <vector>
 
@@ -442,68 +441,25 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     // End faces: a section at an end of its fibre whose partner's centre lies beyond the end
     // plane takes its particle on the flat face (that centre projected onto the section plane,
     // within the rim); the partner's particle faces it; N is normal to the partner's axis.
-    // The face point is the one nearest the other fibre's axis (the line through its centre o
-    // along its tangent): with Q(xi) = |P (x0 - o + G xi)|^2 and A = G^T P G, a line parallel to
-    // the face (A's eigenvalues l2 <= 1e-6 l1) fixes v1 . xi alone, and the point of that chord
-    // nearest the projection m; else the stationary point when inside, or the rim's nearest
-    // point by 3600 samples and a golden-section search in the angle; the projection m itself
-    // where the face's centre is not abreast of the other section (more than 2 R along its axis).
-    auto face = [&](Index f, double s, const Section& c, const Section& other, double xi[2]) {
-      const Vec3 o = other.x0, ot = other.dx0ds.normalized();
-      const double L = fs.length[f], R = fs.radius[f];
+    auto face = [&](Index f, double s, const Section& c, const Vec3& o, double xi[2]) {
+      const double L = fs.length[f];
       const double out = s <= 1e-9 * L ? -1.0 : s >= L - 1e-9 * L ? 1.0 : 0.0;
-      if (out == 0 || (o - c.x0).dot(out * c.dx0ds.normalized()) <= 1e-9 * R) return false;
+      if (out == 0 || (o - c.x0).dot(out * c.dx0ds.normalized()) <= 1e-9 * fs.radius[f]) return false;
       Eigen::Matrix<double, 3, 2> G;
       G << c.g1, c.g2;
       Eigen::Vector2d m = G.colPivHouseholderQr().solve(o - c.x0);
-      if (m.norm() > R) m *= R / m.norm();
-      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - ot * ot.transpose();
-      const Vec3 r = c.x0 - o;
-      const Eigen::Matrix2d A = G.transpose() * P * G;
-      const Eigen::Vector2d b = -G.transpose() * (P * r);
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(A);
-      const double l1 = eig.eigenvalues()(1), l2 = eig.eigenvalues()(0);
-      const Eigen::Vector2d v1 = eig.eigenvectors().col(1), v2 = eig.eigenvectors().col(0);
-      Eigen::Vector2d best = m;
-      if (std::abs(r.dot(ot)) > 2 * R) {  // the face not abreast of the other section: m
-      } else if (l1 > 0 && l2 <= 1e-6 * l1) {
-        const double c1 = v1.dot(b) / l1;
-        if (std::abs(c1) >= R) {
-          best = (c1 > 0 ? R : -R) * v1;
-        } else {
-          const double half = std::sqrt(R * R - c1 * c1);
-          best = c1 * v1 + std::clamp(v2.dot(m), -half, half) * v2;
-        }
-      } else if (l1 > 0) {
-        best = A.ldlt().solve(b);
-        if (best.norm() > R) {
-          const auto Q = [&](double a) {
-            return (P * (r + G * Eigen::Vector2d(R * std::cos(a), R * std::sin(a)))).squaredNorm();
-          };
-          const double step = 2 * std::numbers::pi / 3600;
-          double a0 = 0;
-          for (int k = 1; k < 3600; ++k)
-            if (Q(k * step) < Q(a0)) a0 = k * step;
-          double lo = a0 - step, hi = a0 + step;
-          const double gr = (std::sqrt(5.0) - 1) / 2;
-          for (int k = 0; k < 100; ++k) {
-            const double u = hi - gr * (hi - lo), v = lo + gr * (hi - lo);
-            if (Q(u) < Q(v)) hi = v; else lo = u;
-          }
-          best = Eigen::Vector2d(R * std::cos(0.5 * (lo + hi)), R * std::sin(0.5 * (lo + hi)));
-        }
-      }
-      xi[0] = best(0), xi[1] = best(1);
+      if (m.norm() > fs.radius[f]) m *= fs.radius[f] / m.norm();
+      xi[0] = m(0), xi[1] = m(1);
       return true;
     };
     e.theta = std::acos(std::min(1.0, std::abs(tI.dot(tJ))));
     {
       const auto point = [](const Section& c, const double xi[2]) { return Vec3(c.x0 + xi[0] * c.g1 + xi[1] * c.g2); };
       int side = 0;
-      if (face(I, e.sI, sI, sJ, e.xiI)) {
+      if (face(I, e.sI, sI, sJ.x0, e.xiI)) {
         side = 1;
         particle(sJ, fs.radius[J], point(sI, e.xiI) - sJ.x0, e.xiJ);
-      } else if (face(J, e.sJ, sJ, sI, e.xiJ)) {
+      } else if (face(J, e.sJ, sJ, sI.x0, e.xiJ)) {
         side = 2;
         particle(sI, fs.radius[I], point(sJ, e.xiJ) - sI.x0, e.xiI);
       }
