@@ -8,7 +8,9 @@ centrelines near it (alternating golden-section searches within one sample spaci
 crossing between samples is not missed, and measured there: w_a + w_b - d with d the distance of
 the two points and w = R |G^T n| each fibre's half-width along n = the direction between them
 (G = [g1 g2]), normal to both centrelines at closest points, where a section's width along n is
-the tube's (a pair the search left elsewhere, n more than 1e-3 off normal, is not measured). Where the closest point lies at a fibre's end (the search stopped there), that
+the tube's (a pair the search left elsewhere, n more than 1e-3 off normal, is not measured,
+but for nearly parallel fibres, within 5 degrees, which have no closest pair: across the mean
+tangent, d less its part along it). Where the closest point lies at a fibre's end (the search stopped there), that
 direction runs along the fibre and says nothing of its width: the end's flat disc x0 + G xi,
 |xi| <= R (5 rings of 72 points) is measured instead, each point's depth in the other fibre
 w - d (d its distance from the nearest point of the other centreline, w that fibre's half-width
@@ -87,9 +89,12 @@ def refine(rows_a, ua, rows_b, ub, step):
     la, lb = (len(rows_a) - 1) // 2, (len(rows_b) - 1) // 2
     dist = lambda u, v: math.dist(section(rows_a, u)[0], section(rows_b, v)[0])
     a0, b0 = ua, ub
-    for _ in range(4):
+    for _ in range(60):  # alternating sweeps contract by about cos^2 of the angle: up to 60
+        pa, pb = ua, ub
         ua = golden(lambda u: dist(u, ub), max(0, a0 - step), min(la, a0 + step))
         ub = golden(lambda v: dist(ua, v), max(0, b0 - step), min(lb, b0 + step))
+        if abs(ua - pa) + abs(ub - pb) < 1e-9:
+            break
     return ua, ub
 
 
@@ -168,11 +173,26 @@ def main():
             if d == 0:
                 return
             n = [(p - q) / d for p, q in zip(xi, xj)]
-            # a pair the search left short of the closest points (stopped by its bracket):
-            # n runs along a fibre there, and a section's width along it is not the fibre's
-            if max(abs(sum(x * y for x, y in zip(n, tangent(fibres[f], u))))
-                   for f, u in ((fi, ui), (fj, uj))) > 1e-3:
-                return
+            # a pair the search left short of the closest points: n runs along a fibre there,
+            # where a section's width is not the fibre's. Crossing fibres: not measured (another
+            # sample pair reaches their closest points); nearly parallel ones (within 5 deg),
+            # which have no closest pair: d's part across the mean tangent
+            ti, tj = tangent(fibres[fi], ui), tangent(fibres[fj], uj)
+            if max(abs(sum(x * y for x, y in zip(n, t))) for t in (ti, tj)) > 1e-3:
+                cross = [ti[1] * tj[2] - ti[2] * tj[1], ti[2] * tj[0] - ti[0] * tj[2],
+                         ti[0] * tj[1] - ti[1] * tj[0]]
+                if math.sqrt(sum(x * x for x in cross)) > math.sin(math.radians(5)):
+                    return
+                sign = 1 if sum(x * y for x, y in zip(ti, tj)) >= 0 else -1
+                t = [x + sign * y for x, y in zip(ti, tj)]
+                tn = math.sqrt(sum(x * x for x in t))
+                dv = [p - q for p, q in zip(xi, xj)]
+                along = sum(x * y / tn for x, y in zip(dv, t))
+                dv = [x - along * y / tn for x, y in zip(dv, t)]
+                d = math.sqrt(sum(x * x for x in dv))
+                if d == 0:
+                    return
+                n = [x / d for x in dv]
             overlap = half_width(g1i, g2i, n, a.radius) + half_width(g1j, g2j, n, a.radius) - d
         if overlap > best[0]:
             best = (overlap, (fi, ui, xi), (fj, uj, xj))
