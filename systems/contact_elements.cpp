@@ -222,10 +222,9 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
   const double sinParallel = std::sin(p.thetaParallel);
   std::vector<ElementSides> starts{sectionsAt(g, 0.5, w, sep, 0.1 * pMax)};
   for (int k = 0; k <= n; ++k) {
-    const double zeta = double(k) / n, sI = g.sI(zeta), sJ = g.sJ(zeta);
-    const Vec3 tI = centrelineAt(g.fs, g.cl, g.I, sI).dxds.normalized();
-    const Vec3 tJ = centrelineAt(g.fs, g.cl, g.J, sJ).dxds.normalized();
-    if (point || tI.cross(tJ).norm() > sinParallel) starts.push_back({sI, sJ, 0});
+    const double zeta = double(k) / n;
+    const ElementSides start{g.sI(zeta), g.sJ(zeta), 0};
+    if (point || crossingAt(g, start) > sinParallel) starts.push_back(start);
   }
   const double sinCross = std::sin(p.thetaCross);
   std::vector<ElementSides> minima;

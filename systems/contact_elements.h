@@ -60,11 +60,10 @@
 //     on its end face. A long zone's narrow ones (the patch a penetration p_max spans shorter
 //     than the element spacing) and its end-held ones where the fibres make more than
 //     theta_cross (not a line contact's converging end) each take the nearest element; a point
-//     zone has an
-//     element at each of its minima whose centres lie within R_I + R_J + 2 p_max (L_int / m each
-//     for m of them; none: its one element from zeta = 1/2 as above): a strand bent round
-//     another more tightly than their distance comes closest to it twice, and one element at one
-//     minimum let the strands through at the other.
+//     zone has an element at each of its minima whose centres lie within R_I + R_J + 2 p_max
+//     (L_int / m each for m of them; none: its one element from zeta = 1/2 as above): a strand
+//     bent round another more tightly than their distance comes closest to it twice, and one
+//     element at one minimum let the strands through at the other.
 //   Flat ends: when a section is an end of its fibre and the other section's centre lies beyond
 //     that end's plane (by more than 1e-9 R), the particle is the point of the end face closest
 //     to that centre, xi = m clamped to |xi| <= R, G m the projection of the centre onto the

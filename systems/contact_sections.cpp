@@ -91,11 +91,7 @@ bool closestSectionsNear(const FibreStore& fs, const CentrelineStore& cl, Index 
       const Vec3 vJ = centrelineAt(fs, cl, J, uJ).dxds.normalized();
       if (vI.cross(vJ).norm() <= std::sin(thetaParallel)) return false;
       sI = uI, sJ = uJ;
-      if (curvature)
-        *curvature = endI && endJ ? 0
-                     : endJ       ? a11
-                     : endI       ? a22
-                                  : 0.5 * (a11 + a22) - std::hypot(0.5 * (a11 - a22), a12);
+      if (curvature) *curvature = 0.5 * (a11 + a22) - std::hypot(0.5 * (a11 - a22), a12);
       return true;
     }
   }

@@ -64,8 +64,8 @@ bool nearestSectionsInPlane(const FibreStore& fs, const CentrelineStore& cl, Ind
 // with sJ - sI >= sep on one fibre (I == J), and the fibres make more than thetaParallel (rad)
 // there (nearly parallel fibres have no well-posed closest pair). sI, sJ (mm): in, the start;
 // out, the closest sections when found (true), unchanged otherwise. `curvature` (when given) then
-// receives the smaller eigenvalue of dF there, dF_kk of the free section with one held, 0 with
-// both (dimensionless: s in mm along fibres of unit stretch).
+// receives the smaller eigenvalue of dF there, held ends or not (dimensionless: s in mm along
+// fibres of unit stretch).
 bool closestSectionsNear(const FibreStore& fs, const CentrelineStore& cl, Index I, Index J,
                          const SectionWindows& w, double thetaParallel, double sep, double& sI,
                          double& sJ, double* curvature = nullptr);

@@ -267,8 +267,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
   // minimum, with the fibres more than theta_parallel apart (docs/CONTACT.md 1.4, "Crossings");
   // a step past a fibre's end (a bracket bound there) holds that section at the end while the
   // gradient still points outwards, and goes on in the other;
-  // `curvature` receives the smaller eigenvalue of the Hessian there (the free section's
-  // diagonal with one held).
+  // `curvature` receives the smaller eigenvalue of the Hessian there.
   const auto bracketOf = [&](Index f, double s1, double s2) {
     return std::pair{std::max(0.0, std::min(s1, s2) - delta), std::min(fs.length[f], std::max(s1, s2) + delta)};
   };
@@ -318,10 +317,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         const Vec3 uI = at(fs, q, I, u(0)).dx0ds.normalized(), uJ = at(fs, q, J, u(1)).dx0ds.normalized();
         if (uI.cross(uJ).norm() <= std::sin(p.thetaParallel)) return false;
         sa = u(0), sb = u(1);
-        curvature = endA && endB ? 0
-                    : endB       ? H(0, 0)
-                    : endA       ? H(1, 1)
-                                 : H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
+        curvature = H.selfadjointView<Eigen::Lower>().eigenvalues().minCoeff();
         return true;
       }
     }
