@@ -16,6 +16,8 @@ struct ContactLoopStats {
   double normalTurn = 0;     // rad: largest turn of a normal at the last normal update
   double crossingShift = 0;  // mm: largest move of a crossing's section at the same update
                              // (systems/crossing_follow.h; fibre-fibre only)
+  double faceShift = 0;      // mm: largest move of an end face's point or of its other section
+                             // at the same update (systems/face_follow.h)
   double penaltyChange = 0;  // largest |k_new / k_old - 1| at the last penalty adaptation
   Index zonesAtCeiling = 0;  // zones held at the penalty ceiling deeper than p_max (same update)
 };

@@ -100,7 +100,8 @@ constexpr double kSameSections = 1e-2;
 
 // Loop B: Newton with the elements fixed, then the normals at the new state (with
 // contact.follow_crossings, frictionless crossings' sections moved to the closest points first,
-// systems/crossing_follow.h), until the normals stop turning and no section moves, or n_B
+// systems/crossing_follow.h; frictionless end faces' points to their deepest point,
+// systems/face_follow.h), until the normals stop turning and no section moves, or n_B
 // passes. Every update is recorded by the mixer (contact `normal_acceleration`);
 // when it has a secant step (the map showed itself unstable), that replaces the update.
 // Linearised fibre normals (contact `normal_update` "newton") already are those of the
@@ -127,7 +128,8 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
       w.contact.unstableNormals = true;
       break;
     }
-    const bool moved = w.fibreStats.crossingShift > s.particleTolerance * minRadius(w.fibres);
+    const bool moved = std::max(w.fibreStats.crossingShift, w.fibreStats.faceShift) >
+                       s.particleTolerance * minRadius(w.fibres);
     if (std::max(w.fibreStats.normalTurn, w.toolStats.normalTurn) < s.normalTolerance &&
         switched == 0 && !moved)
       break;

@@ -13,6 +13,7 @@
 #include "systems/contact_particles.h"
 #include "systems/contact_scatter.h"
 #include "systems/crossing_follow.h"
+#include "systems/face_follow.h"
 #include "systems/fibre_contact_law.h"
 #include "systems/friction_history.h"
 #include "systems/friction_reference.h"
@@ -102,6 +103,9 @@ void buildNormals(WorldState& w, TaskGraph& g) {
   if (w.contact.fibres && w.contact.followCrossings)
     g.add("crossing follow", followCrossings, w.fibres, w.fibres.q, w.contact, s.zones,
           s.elements, w.fibreStats);
+  if (w.contact.fibres)
+    g.add("face follow", followEndFaces, w.fibres, w.fibres.q, w.contact, s.zones, s.elements,
+          w.fibreStats);
   if (w.contact.fibres)
     g.add("contact normals", updateNormalsAndGaps, w.fibres, w.fibres.q, w.contact, s.elements,
           w.fibreStats, w.def.trace);

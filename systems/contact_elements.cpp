@@ -141,17 +141,19 @@ Index nearestElement(const Intermediate& g, const ContactElementStore& el, Index
 }
 
 // The particles of eq. 9 (towards the other section's centre), or on an end face when one
-// section is an end of its fibre and the other lies beyond it.
-void particlesWithEndFaces(const FibreStore& fs, const Intermediate& g, const ElementSides& sides,
-                           const Section& I, const Section& J, double xiI[2], double xiJ[2],
-                           std::uint8_t& flags) {
+// section is an end of its fibre and the other lies beyond it: the face point deepest in the
+// other fibre, whose section moves to that point's closest centreline point (endFaceContact).
+void particlesWithEndFaces(const FibreStore& fs, const Eigen::VectorXd& q, const Intermediate& g,
+                           double sep, ElementSides& sides, Section& I, Section& J,
+                           double xiI[2], double xiJ[2], std::uint8_t& flags) {
   particles(I, J, fs.radius[g.I], fs.radius[g.J], xiI, xiJ, flags);
   double xiE[2];
-  if (endFaceParticle(fs, g.I, sides.sI, I, J.x0, fs.radius[g.I], xiE)) {
+  const double clearI = kFaceClearance * fs.radius[g.I], clearJ = kFaceClearance * fs.radius[g.J];
+  if (endFaceContact(fs, q, g.cl, g.I, sides.sI, I, g.J, sep, clearJ, sides.sJ, J, xiE)) {
     xiI[0] = xiE[0], xiI[1] = xiE[1];
     facingParticle(J, fs.radius[g.J], I.x0 + xiE[0] * I.g1 + xiE[1] * I.g2, xiJ);
     flags |= kEndFaceI;
-  } else if (endFaceParticle(fs, g.J, sides.sJ, J, I.x0, fs.radius[g.J], xiE)) {
+  } else if (endFaceContact(fs, q, g.cl, g.J, sides.sJ, J, g.I, sep, clearI, sides.sI, I, xiE)) {
     xiJ[0] = xiE[0], xiJ[1] = xiE[1];
     facingParticle(I, fs.radius[g.I], J.x0 + xiE[0] * J.g1 + xiE[1] * J.g2, xiI);
     flags |= kEndFaceJ;
@@ -342,8 +344,8 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     const bool closest =
         atCrossing[e - first] ||
         (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides));
-    const Section I = contactSection(fs, q, g.I, sides.sI);
-    const Section J = contactSection(fs, q, g.J, sides.sJ);
+    Section I = contactSection(fs, q, g.I, sides.sI);
+    Section J = contactSection(fs, q, g.J, sides.sJ);
     double xiI[2], xiJ[2];
     std::uint8_t flags = sides.flags;
     const int forced = g.I == g.J ? 0 : forcedSign(p, g.I, sides.sI, g.J, sides.sJ);
@@ -351,7 +353,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     if (forced)
       forcedParticles(I, J, fs.radius[g.I], fs.radius[g.J], N, xiI, xiJ, flags);
     else
-      particlesWithEndFaces(fs, g, sides, I, J, xiI, xiJ, flags);
+      particlesWithEndFaces(fs, q, g, sep, sides, I, J, xiI, xiJ, flags);
     el.zone[e] = z;
     el.fibreI[e] = g.I;
     el.sI[e] = sides.sI;
@@ -364,7 +366,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     const NormalGap ng =
         forced ? forcedNormalAndGap(I, J, xiI, xiJ, N, p.forcedAllowance)
                : normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J], p.thetaParallel,
-                              p.thetaCross, flags);
+                              p.thetaCross, flags, endRoom(fs, g.I, sides.sI, g.J, sides.sJ));
     el.normal[e] = ng.normal;
     el.gap[e] = ng.gap;
     el.theta[e] = ng.theta;

@@ -1,5 +1,7 @@
 #include "systems/contact_geometry.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <limits>
 #include <tuple>
 
@@ -161,17 +163,96 @@ bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, dou
   return true;
 }
 
+namespace {
+
+// The point of S's disc nearest p: the projection G m of p - x0 onto the section plane,
+// m = (G^T G)^-1 G^T (p - x0), kept within the rim (|m| <= R).
+Eigen::Vector2d discProjection(const Section& S, double R, const Vec3& p) {
+  Eigen::Matrix2d M;
+  M << S.g1.dot(S.g1), S.g1.dot(S.g2), S.g1.dot(S.g2), S.g2.dot(S.g2);
+  const Vec3 d = p - S.x0;
+  Eigen::Vector2d m = M.inverse() * Eigen::Vector2d(S.g1.dot(d), S.g2.dot(d));
+  if (m.norm() > R) m *= R / m.norm();
+  return m;
+}
+
+}  // namespace
+
 bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
                      double R, double xi[2]) {
   const double L = fs.length[f], tol = 1e-9 * L;
   const double outward = s <= tol ? -1 : s >= L - tol ? 1 : 0;
   if (outward == 0 || (c - S.x0).dot(outward * S.dx0ds.normalized()) <= 1e-9 * R) return false;
-  Eigen::Matrix2d M;
-  M << S.g1.dot(S.g1), S.g1.dot(S.g2), S.g1.dot(S.g2), S.g2.dot(S.g2);
-  const Vec3 d = c - S.x0;
-  Eigen::Vector2d m = M.inverse() * Eigen::Vector2d(S.g1.dot(d), S.g2.dot(d));
-  if (m.norm() > R) m *= R / m.norm();
+  const Eigen::Vector2d m = discProjection(S, R, c);
   xi[0] = m(0), xi[1] = m(1);
+  return true;
+}
+
+Eigen::Vector2d discPointNearestLine(const Section& S, double R, const Vec3& c, const Vec3& t,
+                                     const Eigen::Vector2d& m) {
+  Eigen::Matrix<double, 3, 2> G;
+  G << S.g1, S.g2;
+  const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - t * t.transpose();
+  const Eigen::Matrix2d A = G.transpose() * P * G;
+  const Eigen::Vector2d b = -G.transpose() * (P * (S.x0 - c));
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(A);
+  const double l1 = eig.eigenvalues()(1), l2 = eig.eigenvalues()(0);  // l1 >= l2 >= 0
+  const Eigen::Vector2d v1 = eig.eigenvectors().col(1), v2 = eig.eigenvectors().col(0);
+  if (!(l1 > 0)) return m;
+  if (l2 <= kFlatDisc * l1) {
+    // Q depends on v1 . xi alone: its value c1, then the point of that chord nearest m.
+    const double c1 = v1.dot(b) / l1;
+    if (std::abs(c1) >= R) return (c1 > 0 ? R : -R) * v1;
+    const double half = std::sqrt(R * R - c1 * c1), c2 = std::clamp(v2.dot(m), -half, half);
+    return c1 * v1 + c2 * v2;
+  }
+  const auto at = [&](double mu) {
+    return Eigen::Vector2d(v1 * (v1.dot(b) / (l1 + mu)) + v2 * (v2.dot(b) / (l2 + mu)));
+  };
+  if (at(0).norm() <= R) return at(0);
+  double lo = 0, hi = b.norm() / R;  // |xi(hi)| <= |b| / hi = R
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mu = 0.5 * (lo + hi);
+    (at(mu).norm() > R ? lo : hi) = mu;
+  }
+  const Eigen::Vector2d xi = at(hi);
+  return xi * (R / xi.norm());
+}
+
+bool endFaceContact(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                    Index f, double s, const Section& S, Index o, double sep, double clearance,
+                    double& so, Section& O, double xi[2]) {
+  const double R = fs.radius[f];
+  if (!endFaceParticle(fs, f, s, S, O.x0, R, xi)) return false;
+  const double reach = elementLength(fs, o) + 2 * R;
+  double sa = std::max(0.0, so - reach), sb = std::min(fs.length[o], so + reach);
+  if (f == o) {  // self-contact: o's part stays sep from the end
+    if (so < s) sb = std::min(sb, s - sep);
+    else sa = std::max(sa, s + sep);
+  }
+  if (!(sa < sb)) return true;
+  const auto point = [&](const Eigen::Vector2d& m) {
+    return Vec3(S.x0 + m(0) * S.g1 + m(1) * S.g2);
+  };
+  Eigen::Vector2d m(xi[0], xi[1]);
+  ClosestOnFibre at = closestOnFibre(fs, cl, o, point(m), sa, sb);
+  for (int k = 0; k < 100; ++k) {
+    const CentrelinePoint c = centrelineAt(fs, cl, o, at.s);
+    // the disc point nearest the tangent line, and nearest the point itself (t = 0: P = I)
+    const Eigen::Vector2d cand[2] = {discPointNearestLine(S, R, c.x, c.dxds.normalized(), m),
+                                     discPointNearestLine(S, R, c.x, Vec3::Zero(), m)};
+    const ClosestOnFibre a = closestOnFibre(fs, cl, o, point(cand[0]), sa, sb);
+    const ClosestOnFibre b = closestOnFibre(fs, cl, o, point(cand[1]), sa, sb);
+    const bool first = a.dist2 <= b.dist2;
+    const ClosestOnFibre& best = first ? a : b;
+    if (!(best.dist2 < at.dist2 - 1e-15 * R * R)) break;
+    m = cand[first ? 0 : 1];
+    at = best;
+  }
+  if (!(at.dist2 >= clearance * clearance)) return true;  // o's axis reached: the projection
+  xi[0] = m(0), xi[1] = m(1);
+  so = at.s;
+  O = contactSection(fs, q, o, so);
   return true;
 }
 

@@ -155,4 +155,39 @@ bool outlinePoint(const Vec3& g1, const Vec3& g2, double R, const Vec3& dir, dou
 bool endFaceParticle(const FibreStore& fs, Index f, double s, const Section& S, const Vec3& c,
                      double R, double xi[2]);
 
+// The point of section S's disc |xi| <= R (x = x0 + G xi, G = [g1 g2]; R, xi in mm) nearest the
+// line through c (mm) along the unit t: the minimum of the convex quadratic
+//   Q(xi) = |P (x0 - c + G xi)|^2,  P = I - t t^T,  A = G^T P G = l1 v1 v1^T + l2 v2 v2^T,
+// over the disc. When l2 <= kFlatDisc l1 (the line parallel to the disc) Q depends on v1 . xi
+// alone: that value, and along v2 the point nearest m (m: the tie-break, in the disc). Else the
+// stationary point A^-1 b (b = -G^T P (x0 - c)) inside the disc, or the rim point where
+// (A + mu I) xi = b, mu > 0 (a convex quadratic's minimum on a disc; |xi(mu)| falls with mu),
+// mu by bisection. A line along the disc's normal (A = 0): m. With t = 0 (P = I), the disc
+// point nearest the point c.
+constexpr double kFlatDisc = 1e-6;
+Eigen::Vector2d discPointNearestLine(const Section& S, double R, const Vec3& c, const Vec3& t,
+                                     const Eigen::Vector2d& m);
+
+// An end face of fibre f (section S at s, an end; radius R) against fibre o (section O at so):
+// the face point deepest in o and o's section at that point's closest centreline point, jointly.
+// When endFaceParticle holds for O's centre, from that particle: the least distance
+//   D(xi) = min_s |x0 + G xi - x0o(s)|,  |xi| <= R,  s in [so - h_o - 2R, so + h_o + 2R]
+// (clipped to o; for f == o, also kept sep (mm) from s on so's side), by descent steps that
+// each take the better of two candidates when it lowers D: the disc point nearest the tangent
+// line of o at the current closest point (discPointNearestLine: exact for a straight o, ties
+// towards the current point), and the disc point nearest that centreline point (an exact
+// block-coordinate step of D, which also descends where o curves or kinks at a node). The
+// projection alone put a tilted face's particle in its middle, not at the rim point that sinks
+// in first; the tangent line alone of a fixed section read a square end above an arc of radius
+// 5 R as in contact. Out: xi (section coordinates, mm), so (mm) and O (its section at so, from
+// q); where the deepest point lies less than `clearance` (mm) from o's axis, endFaceParticle's
+// xi and the given so, O instead (an element's normal runs from o's axis through its face point,
+// a direction lost as the two meet: elements pass R_o / 2, kFaceClearance; a depth alone, 0).
+// False (nothing changed) when endFaceParticle does not hold. Centreline from cl, sections
+// from q (one state).
+constexpr double kFaceClearance = 0.5;  // of the other fibre's radius
+bool endFaceContact(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                    Index f, double s, const Section& S, Index o, double sep, double clearance,
+                    double& so, Section& O, double xi[2]);
+
 }  // namespace fibra

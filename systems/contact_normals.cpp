@@ -17,11 +17,12 @@ namespace fibra {
 
 NormalGap normalAndGap(const Section& I, const Section& J, const double xiI[2],
                        const double xiJ[2], double RI, double RJ, double thetaParallel,
-                       double thetaCross, std::uint8_t flags) {
+                       double thetaCross, std::uint8_t flags, const EndRoom& room) {
   const Vec3 xI = I.x0 + xiI[0] * I.g1 + xiI[1] * I.g2;
   const Vec3 xJ = J.x0 + xiJ[0] * J.g1 + xiJ[1] * J.g2;
   const NormalOf<double> n = normalOfSections<double>(I.x0, J.x0, I.dx0ds, J.dx0ds, xI, xJ, I.g1,
-                                                      RI, RJ, thetaParallel, thetaCross, flags);
+                                                      RI, RJ, thetaParallel, thetaCross, flags,
+                                                      room);
   return {n.normal, (xI - xJ).dot(n.normal), n.theta, n.crossWeight, n.fallback};
 }
 
@@ -52,7 +53,8 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
               forced ? forcedNormalAndGap(I, J, xiI, xiJ, forced * params.forcedNormal,
                                           params.forcedAllowance)
                      : normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
-                                    params.thetaParallel, params.thetaCross, el.fallback[e]);
+                                    params.thetaParallel, params.thetaCross, el.fallback[e],
+                                    endRoom(fs, fI, el.sI[e], fJ, el.sJ[e]));
           // A linearised normal already is the state's: only fixed ones can ask for a pass.
           if (!linearisedNormal(params, el, e))
             turned = std::max(turned,

@@ -1,6 +1,7 @@
 #include "systems/contact_queries.h"
 
 #include "systems/contact_geometry.h"
+#include "systems/contact_normals.h"
 #include "systems/contact_params.h"
 #include "systems/contact_sections.h"
 #include "systems/facing_particles.h"
@@ -96,12 +97,13 @@ double faceDepth(const Section& S, double R, const Vec3& x) {
 // distance, or the distance still falling at a fibre's end, with the fibres not parallel;
 // `seekClosest`), else at the pair. Where one section is an end of its fibre and the other
 // centre lies beyond that end's plane, the end face's point closest to that centre against the
-// other fibre (faceDepth: the rim pressed into its side). Otherwise along n = P_t d / |P_t d|
-// (t the mean tangent, d = x0I - x0J), normal to both fibres at closest points, so that
-// R |G^T n| is each tube's width along it: a pair whose sections lie apart along the fibres is
-// not measured along a direction that runs through a tube lengthwise (a sheared section is
-// wider along such a direction than the tube is across it: 1.54 p_max read where the fibres
-// crossed with 0.82, the plectoneme at t = 0.78, its sections near the clamp sheared 6.6 deg).
+// other fibre (faceDepth: the rim pressed into its side, at the face's deepest point). Otherwise
+// the least of the discs' overlaps along two directions (below), both normal to the fibres at
+// closest points, so that R |G^T n| is each tube's width along them: a pair whose sections lie
+// apart along the fibres is not measured along a direction that runs through a tube lengthwise
+// (a sheared section is wider along such a direction than the tube is across it: 1.54 p_max
+// read where the fibres crossed with 0.82, the plectoneme at t = 0.78, its sections near the
+// clamp sheared 6.6 deg).
 // sI, sJ (mm): in, the pair; out, where the overlap was measured.
 double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
                    const ContactParams& params, Index fI, Index fJ, double& sI, double& sJ,
@@ -112,21 +114,33 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
   const double sep = fI == fJ ? params.selfSeparation[fI] : 0;
   if (seekClosest)
     closestSectionsNear(fs, cl, fI, fJ, window, params.thetaParallel, sep, sI, sJ);
-  const Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
+  Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
   const double RI = fs.radius[fI], RJ = fs.radius[fJ];
   double xi[2];
-  if (seekClosest && endFaceParticle(fs, fI, sI, I, J.x0, RI, xi))
+  if (seekClosest && endFaceContact(fs, q, cl, fI, sI, I, fJ, sep, 0, sJ, J, xi))
     return faceDepth(J, RJ, I.x0 + xi[0] * I.g1 + xi[1] * I.g2);
-  if (seekClosest && endFaceParticle(fs, fJ, sJ, J, I.x0, RJ, xi))
+  if (seekClosest && endFaceContact(fs, q, cl, fJ, sJ, J, fI, sep, 0, sI, I, xi))
     return faceDepth(I, RI, J.x0 + xi[0] * J.g1 + xi[1] * J.g2);
+  // The discs' overlap along n, w_I(n) + w_J(n) - (x0I - x0J).n, bounds their true overlap from
+  // above for every unit n (their support functions): the least of two candidates. Across the
+  // mean tangent t, n = P_t d / |P_t d| (d = x0I - x0J; coincident centres: I's first director),
+  // normal to both fibres at closest points and the measure of parallel fibres whose sections lie
+  // apart along them; and eq. 10's direction (systems/contact_normals.h), which for crossing
+  // fibres is their common normal, or that of the segments they cover past an end (across the
+  // mean tangent alone, a tilted end 0.005 mm clear of a crossing fibre read 27 p_max deep).
+  const auto along = [&](const Vec3& n) {
+    return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - (I.x0 - J.x0).dot(n);
+  };
   const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
   const Vec3 t = (tI + (tI.dot(tJ) < 0 ? Vec3(-tJ) : tJ)).normalized();
   Vec3 d = I.x0 - J.x0;
   if (const Vec3 across = d - d.dot(t) * t; across.norm() > 1e-9 * (RI + RJ)) d = across;
   const double dist = d.norm();
-  // coincident centres (a full overlap): the width across I's first director
-  const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
-  return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist;
+  const double acrossTangent = along(dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized()));
+  const NormalOf<double> n = normalOfSections<double>(
+      I.x0, J.x0, I.dx0ds, J.dx0ds, I.x0, J.x0, I.g1, RI, RJ, params.thetaParallel,
+      params.thetaCross, 0, endRoom(fs, fI, sI, fJ, sJ));
+  return std::min(acrossTangent, along(n.normal));
 }
 
 }  // namespace

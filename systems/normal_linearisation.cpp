@@ -70,7 +70,8 @@ LinearisedContact linearisedContact(const FibreStore& fs, const Eigen::VectorXd&
   const VAD xJ = seeded(particlePosition(q, el.sideJ[e]), 3);
   const NormalOf<AD> n = normalOfSections<AD>(
       seeded(I.x0, 6), seeded(J.x0, 9), seeded(I.dx0ds, 12), seeded(J.dx0ds, 15), xI, xJ, I.g1,
-      fs.radius[fI], fs.radius[fJ], thetaParallel, thetaCross, el.fallback[e]);
+      fs.radius[fI], fs.radius[fJ], thetaParallel, thetaCross, el.fallback[e],
+      endRoom(fs, fI, el.sI[e], fJ, el.sJ[e]));
   const VAD& N = n.normal;
   const VAD d = xI - xJ;
   const AD g = d.dot(N);                                    // mm

@@ -73,4 +73,42 @@ inline double overlapAt(const FibreStore& fs, const Eigen::VectorXd& q, Index I,
   return width(I, c.sI) + width(J, c.sJ) - c.distance;
 }
 
+// Distance from p to fibre f's centreline within [sa, sb] (mm): sampled every 2 um, then a
+// golden-section search around the best sample.
+inline double distanceToCentreline(const FibreStore& fs, const Eigen::VectorXd& q, Index f,
+                                   const Vec3& p, double sa, double sb) {
+  const auto d = [&](double s) { return (centreline(fs, q, f, s) - p).norm(); };
+  const int n = std::max(2, int(std::ceil((sb - sa) / 2e-3)));
+  double best = sa;
+  for (int i = 1; i <= n; ++i)
+    if (const double s = sa + (sb - sa) * i / n; d(s) < d(best)) best = s;
+  double lo = std::max(sa, best - (sb - sa) / n), hi = std::min(sb, best + (sb - sa) / n);
+  const double r = (std::sqrt(5.0) - 1) / 2;
+  for (int k = 0; k < 80; ++k) {
+    const double u = hi - r * (hi - lo), v = lo + r * (hi - lo);
+    if (d(u) < d(v)) hi = v;
+    else lo = u;
+  }
+  return std::min(d(best), d(0.5 * (lo + hi)));
+}
+
+// How deep the end disc of fibre f (its start when `start`, else its end) reaches into fibre o:
+// the largest R_o - |x - x0_o| over the disc x = x0 + xi1 g1 + xi2 g2, |xi| <= R_f (directors
+// from the nodes), on a polar grid of `rings` x `angles` points, the distance to o's centreline
+// within [sa, sb] by distanceToCentreline (mm; negative: the disc clear of o by that much).
+inline double endDiscDepth(const FibreStore& fs, const Eigen::VectorXd& q, Index f, bool start,
+                           Index o, double sa, double sb, int rings = 20, int angles = 180) {
+  const double s = start ? 0 : fs.length[f], R = fs.radius[f];
+  const Vec3 x0 = centreline(fs, q, f, s);
+  const auto [g1, g2] = directors(fs, q, f, s);
+  double deepest = -1e300;
+  for (int i = 0; i <= rings; ++i)
+    for (int j = 0; j < (i == 0 ? 1 : angles); ++j) {
+      const double r = R * i / rings, phi = 2 * 3.14159265358979323846 * j / angles;
+      const Vec3 x = x0 + r * std::cos(phi) * g1 + r * std::sin(phi) * g2;
+      deepest = std::max(deepest, fs.radius[o] - distanceToCentreline(fs, q, o, x, sa, sb));
+    }
+  return deepest;
+}
+
 }  // namespace fibra::test

@@ -37,6 +37,8 @@ struct Element {
   std::uint8_t fallback;  // section and tangent bits only (kFallbackSectionI/J, kFallbackTangent)
   bool ambiguous;         // several plane-cut roots: the pipeline's choice is not checked
   bool dip = false;       // one of a point zone's m >= 2 minima (length L_int / m)
+  bool faceTie = false;   // an end face's deepest point is not unique: only the gap is compared
+  bool pastEnd = false;   // the crossing normal from the segments' closest points (past an end)
 };
 
 struct Detection {
@@ -435,33 +437,109 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     if (!particle(sJ, fs.radius[J], sI.x0 - sJ.x0, e.xiJ) && !particle(sJ, fs.radius[J], n, e.xiJ))
       e.xiJ[0] = fs.radius[J], e.xiJ[1] = 0;
     // End faces: a section at an end of its fibre whose partner's centre lies beyond the end
-    // plane takes its particle on the flat face (that centre projected onto the section plane,
-    // within the rim); the partner's particle faces it; N is normal to the partner's axis.
-    auto face = [&](Index f, double s, const Section& c, const Vec3& o, double xi[2]) {
-      const double L = fs.length[f];
+    // plane takes its particle on the flat face, at the face point deepest in the partner: the
+    // least distance from the disc |xi| <= R to the partner's centreline within h + 2 R of the
+    // paired section (kept the separation away from the end for self-contact), by a polar grid
+    // of 24 x 144 points (closest() for each) and a compass search from its best point; the
+    // partner's section moves to that point's closest centreline point, and its particle faces
+    // the face point; N is normal to the partner's axis there. Where the distance changes by
+    // less than 1e-12 mm across 1e-3 R about that point (a face parallel to a straight partner:
+    // a chord of equal depth), the element's particles are a tie, and only its gap is compared.
+    // Where that point lies within half the partner's radius of its axis, the direction from
+    // the axis is ill-posed: the face particle is the projection of the partner's centre onto
+    // the face (within the rim) and the partner keeps its section.
+    const auto point = [](const Section& c, const double xi[2]) { return Vec3(c.x0 + xi[0] * c.g1 + xi[1] * c.g2); };
+    auto face = [&](Index f, double s, const Section& c, Index o, double& so, Section& other,
+                    double xi[2]) {
+      const double L = fs.length[f], R = fs.radius[f];
       const double out = s <= 1e-9 * L ? -1.0 : s >= L - 1e-9 * L ? 1.0 : 0.0;
-      if (out == 0 || (o - c.x0).dot(out * c.dx0ds.normalized()) <= 1e-9 * fs.radius[f]) return false;
-      Eigen::Matrix<double, 3, 2> G;
-      G << c.g1, c.g2;
-      Eigen::Vector2d m = G.colPivHouseholderQr().solve(o - c.x0);
-      if (m.norm() > fs.radius[f]) m *= fs.radius[f] / m.norm();
-      xi[0] = m(0), xi[1] = m(1);
+      if (out == 0 || (other.x0 - c.x0).dot(out * c.dx0ds.normalized()) <= 1e-9 * R) return false;
+      const double reach = fs.length[o] / fs.elementCount[o] + 2 * R;
+      double a = std::max(0.0, so - reach), b = std::min(fs.length[o], so + reach);
+      if (f == o) {
+        if (so < s) b = std::min(b, s - p.selfSeparation[f]);
+        else a = std::max(a, s + p.selfSeparation[f]);
+      }
+      const auto projection = [&] {
+        Eigen::Matrix<double, 3, 2> G;
+        G << c.g1, c.g2;
+        Eigen::Vector2d m = G.colPivHouseholderQr().solve(other.x0 - c.x0);
+        if (m.norm() > R) m *= R / m.norm();
+        xi[0] = m(0), xi[1] = m(1);
+        return true;
+      };
+      if (!(a < b)) return projection();  // no window
+      const auto dist = [&](const Eigen::Vector2d& m, double& sOut) {
+        const double x[2] = {m(0), m(1)};
+        return closest(fs, q, o, point(c, x), a, b, sOut);
+      };
+      const auto inDisc = [&](Eigen::Vector2d m) { return m.norm() > R ? Eigen::Vector2d(m * (R / m.norm())) : m; };
+      Eigen::Vector2d best = Eigen::Vector2d::Zero();
+      double sBest = 0, dBest = dist(best, sBest);
+      for (int i = 1; i <= 24; ++i)
+        for (int j = 0; j < 144; ++j) {
+          const double r = R * i / 24, phi = 2 * 3.14159265358979323846 * j / 144;
+          const Eigen::Vector2d m(r * std::cos(phi), r * std::sin(phi));
+          double sm;
+          if (const double d = dist(m, sm); d < dBest) dBest = d, best = m, sBest = sm;
+        }
+      for (double step = R / 24; step > 1e-13 * R;) {
+        bool moved = false;
+        for (const Eigen::Vector2d dir : {Eigen::Vector2d(1, 0), Eigen::Vector2d(-1, 0),
+                                          Eigen::Vector2d(0, 1), Eigen::Vector2d(0, -1)}) {
+          const Eigen::Vector2d m = inDisc(best + step * dir);
+          double sm;
+          if (const double d = dist(m, sm); d < dBest) {
+            dBest = d, best = m, sBest = sm, moved = true;
+            break;
+          }
+        }
+        if (!moved) step *= 0.5;
+      }
+      double sm;
+      {
+        double least = 1e300;
+        for (const Eigen::Vector2d dir : {Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 1),
+                                          Eigen::Vector2d(1, 1).normalized(), Eigen::Vector2d(1, -1).normalized()}) {
+          const Eigen::Vector2d up = inDisc(best + 1e-3 * R * dir), down = inDisc(best - 1e-3 * R * dir);
+          const double change = std::max(std::abs(dist(up, sm) - dBest) * ((up - best).norm() > 0),
+                                          std::abs(dist(down, sm) - dBest) * ((down - best).norm() > 0));
+          least = std::min(least, change);
+        }
+        // a closest point at the window's end is no foot of a perpendicular: the distance has a
+        // kink there, where the compass search and the pipeline's descent may stop apart
+        e.faceTie = least < 1e-12 || sBest <= a + 1e-9 || sBest >= b - 1e-9;
+      }
+      // the partner's axis reached (within half its radius): the projection, the paired section
+      if (dBest < 0.5 * fs.radius[o]) {
+        e.faceTie = false;
+        return projection();
+      }
+      // a foot at an interior node, where a deformed centreline kinks: the tangent there (either
+      // side's, or their mean within 1e-9 h) and with it N is a matter of round-off
+      const double h = fs.length[o] / fs.elementCount[o], node = std::round(sBest / h);
+      if (node > 0 && node < fs.elementCount[o] && std::abs(sBest / h - node) <= 1e-6) e.ambiguous = true;
+      xi[0] = best(0), xi[1] = best(1);
+      so = sBest;
+      other = at(fs, q, o, so);
       return true;
     };
     e.theta = std::acos(std::min(1.0, std::abs(tI.dot(tJ))));
     {
-      const auto point = [](const Section& c, const double xi[2]) { return Vec3(c.x0 + xi[0] * c.g1 + xi[1] * c.g2); };
+      Section cI = sI, cJ = sJ;
       int side = 0;
-      if (face(I, e.sI, sI, sJ.x0, e.xiI)) {
+      if (face(I, e.sI, cI, J, e.sJ, cJ, e.xiI)) {
         side = 1;
-        particle(sJ, fs.radius[J], point(sI, e.xiI) - sJ.x0, e.xiJ);
-      } else if (face(J, e.sJ, sJ, sI.x0, e.xiJ)) {
+        particle(cJ, fs.radius[J], point(cI, e.xiI) - cJ.x0, e.xiJ);
+      } else if (face(J, e.sJ, cJ, I, e.sI, cI, e.xiJ)) {
         side = 2;
-        particle(sI, fs.radius[I], point(sJ, e.xiJ) - sI.x0, e.xiI);
+        particle(cI, fs.radius[I], point(cJ, e.xiJ) - cI.x0, e.xiI);
       }
       if (side) {
-        const Vec3 pI = point(sI, e.xiI), pJ = point(sJ, e.xiJ);
-        const Vec3 axis = side == 1 ? tJ : tI, r = side == 1 ? Vec3(pI - sJ.x0) : Vec3(sI.x0 - pJ);
+        const Vec3 fI = cI.dx0ds.normalized(), fJ = cJ.dx0ds.normalized();
+        e.theta = std::acos(std::min(1.0, std::abs(fI.dot(fJ))));
+        const Vec3 pI = point(cI, e.xiI), pJ = point(cJ, e.xiJ);
+        const Vec3 axis = side == 1 ? fJ : fI, r = side == 1 ? Vec3(pI - cJ.x0) : Vec3(cI.x0 - pJ);
         e.fallback |= side == 1 ? kEndFaceI : kEndFaceJ;
         const Vec3 nf = r - r.dot(axis) * axis;
         if (nf.norm() > 1e-12 * (fs.radius[I] + fs.radius[J])) {  // else (end to end): eq. 10
@@ -471,8 +549,35 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
         }
       }
     }
-    // eq. 10
+    // eq. 10; the crossing normal between the closest points of the segments the fibres cover
+    // (x0 + lambda t, lambda from -s to L - s, an end farther than 2 (R_I + R_J) not counted)
+    // where the tangent lines' closest points lie past an end: the convex quadratic |x0I - x0J + lambda t_I - mu t_J|^2 on that box by exact
+    // coordinate minimisation, each clamped, until neither moves by 1e-15 mm.
     const double w = std::clamp((e.theta - p.thetaParallel) / (p.thetaCross - p.thetaParallel), 0.0, 1.0);
+    Vec3 segment = Vec3::Zero();
+    if (w > 0) {
+      Eigen::Matrix<double, 3, 2> A;
+      A << tI, -tJ;
+      const Vec3 r = sI.x0 - sJ.x0;
+      Eigen::Vector2d lm = A.colPivHouseholderQr().solve(Vec3(-r));
+      // ends farther than 2 (R_I + R_J) along their fibre do not count
+      const double reach = 2 * (fs.radius[I] + fs.radius[J]);
+      const auto cap = [reach](double room) { return room <= reach ? room : 1e300; };
+      const double loI = -cap(e.sI), hiI = cap(fs.length[I] - e.sI);
+      const double loJ = -cap(e.sJ), hiJ = cap(fs.length[J] - e.sJ);
+      if (lm(0) < loI || lm(0) > hiI || lm(1) < loJ || lm(1) > hiJ) {
+        lm = Eigen::Vector2d(std::clamp(lm(0), loI, hiI), std::clamp(lm(1), loJ, hiJ));
+        for (int it = 0; it < 100000; ++it) {
+          const double l = std::clamp(lm(1) * tI.dot(tJ) - tI.dot(r), loI, hiI);
+          const double m = std::clamp(l * tI.dot(tJ) + tJ.dot(r), loJ, hiJ);
+          const bool still = std::abs(l - lm(0)) + std::abs(m - lm(1)) <= 1e-15;
+          lm = Eigen::Vector2d(l, m);
+          if (still) break;
+        }
+        segment = r + lm(0) * tI - lm(1) * tJ;
+        e.pastEnd = true;
+      }
+    }
     // The centre-to-centre direction without its component along the mean tangent (the
     // sections' axial offset, systems/contact_normals.h).
     const Vec3 tm = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();
@@ -481,6 +586,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     Vec3 nc = tI.cross(tJ);
     if (nc.norm() > 0) nc.normalize();
     if (nc.dot(d) < 0) nc = -nc;
+    if (segment.norm() > 1e-9 * (fs.radius[I] + fs.radius[J])) nc = segment.normalized();
     e.normal = w == 1 ? nc : Vec3((w * nc + (1 - w) * d.normalized()).normalized());
     const Vec3 pI = sI.x0 + e.xiI[0] * sI.g1 + e.xiI[1] * sI.g2;
     const Vec3 pJ = sJ.x0 + e.xiJ[0] * sJ.g1 + e.xiJ[1] * sJ.g2;

@@ -132,8 +132,10 @@ TEST_CASE("normals are unit and point from J to I, swapping I and J flips N and 
       CHECK(d.el.normal[e].dot(x0I - x0J) >= -1e-12);
       CHECK((again.normal[e] - d.el.normal[e]).norm() <= 1e-14);
       CHECK(std::abs(again.gap[e] - d.el.gap[e]) <= 1e-14);
-      CHECK((swapped.normal[e] + d.el.normal[e]).norm() <= 1e-14);
-      CHECK(std::abs(swapped.gap[e] - d.el.gap[e]) <= 1e-14);
+      // to round-off, which the crossing weight's factor for ends (contact_normals.h) divides by
+      // 1 - (t_I.t_J)^2 >= sin^2 theta_parallel: 1e-16 in the tangents shows as up to 1e-13
+      CHECK((swapped.normal[e] + d.el.normal[e]).norm() <= 1e-12);
+      CHECK(std::abs(swapped.gap[e] - d.el.gap[e]) <= 1e-12);
       CHECK(swapped.theta[e] == doctest::Approx(d.el.theta[e]).epsilon(1e-14));
     }
   }

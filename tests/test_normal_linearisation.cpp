@@ -8,6 +8,8 @@
 #include "engine/world_state.h"
 #include "fd_tangent.h"
 #include "io/scene_loader.h"
+#include "systems/contact_geometry.h"
+#include "systems/contact_normals.h"
 
 #include <doctest/doctest.h>
 
@@ -175,3 +177,53 @@ TEST_CASE("a heavy parallel line contact converges with the linearised normal to
   CHECK(inner >= 4);
 }
 
+
+TEST_CASE("linearised normal tangent matches finite differences where the crossing lies past an end") {
+  // A along x; B at 30 degrees to it in plan, 2R above, ending 0.01 mm before the crossing (40
+  // elements each), pressed 1e-3 mm into A: the tangent lines of B's sections near its end meet A's past that
+  // end, and their crossing normal is the line between the closest points of the segments the
+  // fibres cover (systems/contact_normals.h), which turns with the state.
+  for (double mu : {0.0, 0.3}) {
+    CAPTURE(mu);
+    const double R = 0.1;
+    SceneDef s;
+    s.materials.push_back({"m", 4000, 0.3, 1, 1});
+    s.fibres.push_back(straightFibre("A", Vec3(-2, 0, 0), Vec3(2, 0, 0), R, 40, Vec3::UnitZ()));
+    const Vec3 b(std::cos(30 * kDeg), std::sin(30 * kDeg), 0);
+    s.fibres.push_back(straightFibre("B", Vec3(0, 0, 2 * R) - 2 * b, Vec3(0, 0, 2 * R) - 0.01 * b, R, 40, Vec3::UnitZ()));
+    for (const char* f : {"A", "B"}) {
+      hold(s, std::string(f) + ".start", {X, Y, Z});
+      hold(s, std::string(f) + ".end", {X, Y, Z});
+    }
+    s.contact.enabled = true;
+    s.contact.maxPenetration = 1e-3;
+    s.contact.friction = mu;
+    s.contact.maxReversibleSlip = 5e-4;
+    s.contact.normalUpdate = NormalUpdate::Newton;
+    s.steps.push_back(StepDef{});
+    WorldState w;
+    w.scene = s;
+    buildWorld(w);
+    const Index first = w.fibres.firstNode[1];
+    for (Index n = first; n < first + w.fibres.nodeCount[1]; ++n) {
+      const double i = double(n - first);
+      x0Of(w.fibres.q, n) += Vec3(2e-4, 5e-5 * std::sin(1.3 * i), -1e-3 + 5e-5 * std::cos(0.7 * i));
+    }
+    runStage(w, w.pipeline.detect, 0);
+    runStage(w, w.pipeline.assemble, 0, true);
+    const ContactElementStore& el = w.trial.elements;
+    int tilted = 0;  // active side elements whose normal the fibre ends turned
+    for (Index e = 0; e < el.size(); ++e) {
+      if (!(w.trial.forces.normalForce[e] > 0) || (el.fallback[e] & (kEndFaceI | kEndFaceJ))) continue;
+      const Section I = contactSection(w.fibres, w.fibres.q, el.fibreI[e], el.sI[e]);
+      const Section J = contactSection(w.fibres, w.fibres.q, el.fibreJ[e], el.sJ[e]);
+      const double xiI[2] = {el.xiI1[e], el.xiI2[e]}, xiJ[2] = {el.xiJ1[e], el.xiJ2[e]};
+      const NormalGap lines = normalAndGap(I, J, xiI, xiJ, R, R, w.contact.thetaParallel,
+                                           w.contact.thetaCross, el.fallback[e]);
+      tilted += (lines.normal - el.normal[e]).norm() > 1e-6;
+    }
+    MESSAGE(tilted << " active side elements with a tilted crossing normal of " << el.size());
+    CHECK(tilted > 0);
+    CHECK(tangentError(w) <= 1e-6);
+  }
+}
