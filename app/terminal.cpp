@@ -54,8 +54,8 @@ std::string lawLine(const ContactParams& c) {
   if (c.fibres && c.newtonFrictionlessOnly)
     out += ", frictionless parallel normals linearised in Newton once loop B diverges";
   if (c.fibres && c.escalateNormals)
-    out += ", a failed attempt retried once with every fibre normal linearised (kept to the "
-           "step's end where it converges)";
+    out += ", every fibre normal linearised after a failed attempt (retried) or a slow loop B "
+           "(kept to the step's end where it converges)";
   if (c.mu > 0 || c.tools)  // friction is possible (tools carry their own mu)
     out += c.frictionFlips > 0 ? format(", stick/slip held after %d changes (tolerance %g)",
                                         c.frictionFlips, c.frictionTolerance)
@@ -447,6 +447,13 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
                        "normal linearised in Newton; the rest of the step keeps them"
                      : "a failed attempt, retried with every fibre normal linearised in Newton, "
                        "failed again; the step goes on with loop B's normals");
+  }
+  if (r.normalsSwitched && !explained.normalSwitch) {
+    explained.normalSwitch = true;
+    std::fprintf(stderr, "  note: the increment converged with loop B's normals in more than "
+                         "max_iterations Newton iterations and more passes than detections; the "
+                         "step's next attempts linearise every fibre normal in Newton "
+                         "(contact.normal_update \"auto\"; said once)\n");
   }
   if (contact && c.normalRestarts > 0)
     std::fprintf(stderr,

@@ -27,6 +27,7 @@ std::string startWarnings(const World& world);
 struct Explained {
   bool loopCapped = false;  // "loop A capped"
   bool normalRetry = false; // an attempt retried with every fibre normal linearised
+  bool normalSwitch = false; // a slow loop B switched the step to linearised normals
 };
 
 void printIteration(const Progress& p);

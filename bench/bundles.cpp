@@ -22,6 +22,9 @@
 //                       [--increments N]  (of the last step: the squeeze, or the twist)
 //                       [--tolerance T]  (every step's forceTolerance, default 1e-8)
 //                       [--cycle-damping on|off]  (solver.cycle_damping, default on)
+//                       [--detail on|iterations|off]  (a line per increment: its Newton
+//                       iterations, the last attempt's, cutbacks, loop A and B passes, restarts,
+//                       retries, switches; `iterations` adds a line per Newton iteration on stderr)
 #include "core/allocator.h"
 #include "bench/bench_util.h"
 #include "bench/contact_scenes.h"
@@ -62,8 +65,26 @@ struct Outcome {
   std::string failure;
 };
 
-Outcome run(const SceneDef& scene, const WorldDef& def) {
+// One line per increment for --detail: where its Newton iterations went.
+void printIncrement(const StepReport& r) {
+  const ContactReport& c = r.contact;
+  std::printf("  t %.4f: %d iterations (%d in the last attempt), %d cutbacks, %d sub-increments, "
+              "loop A %d, loop B %d, restarts %d (normal %d), normal retries %d%s%s, consistency "
+              "passes %d, active %d, sliding %d, held %d\n",
+              r.time, r.totalIterations, r.iterations, r.cutbacks, r.subIncrements,
+              c.detectionLoops, c.normalLoops, c.restarts, c.normalRestarts, r.normalRetries,
+              r.normalsLinearised ? " (linearised)" : "", r.normalsSwitched ? " (switched)" : "", c.consistencyPasses, c.active,
+              c.sliding, c.frictionHeld);
+  if (r.cutbacks > 0) std::printf("    %s\n", r.message.c_str());
+}
+
+Outcome run(const SceneDef& scene, WorldDef def, bool detail, bool iterations) {
   Outcome o;
+  if (iterations)
+    def.progress = [](const Progress& p) {
+      std::fprintf(stderr, "t %.5f it %d residual %.3e step %.3f active %d sliding %d\n", p.time,
+                   p.iteration, p.residual, p.stepLength, p.activeElements, p.slidingElements);
+    };
   o.end = scene.steps.back().endTime;
   o.wall = bench::seconds([&] {
     World w(scene, def);
@@ -76,6 +97,7 @@ Outcome run(const SceneDef& scene, const WorldDef& def) {
         o.failure = r.message + " (" + std::to_string(r.totalIterations) + " iterations)";
         break;
       }
+      if (detail) printIncrement(r);
       ++o.increments;
       o.iterations += r.totalIterations;
       o.cutbacks += r.cutbacks;
@@ -118,6 +140,7 @@ int main(int argc, char** argv) {
   int holdAfter = ContactDef{}.frictionHoldAfter;
   bool facing = ContactDef{}.facingParticles;
   bool heldSpin = false;
+  bool detail = false, iterations = false;
   int increments = 0;        // 0: the scene's
   double tolerance = 0;      // 0: the step's forceTolerance
   NormalUpdate normalUpdate = ContactDef{}.normalUpdate;
@@ -126,7 +149,7 @@ int main(int argc, char** argv) {
   const char* known[] = {"--rings", "--mu", "--pmax", "--load", "--elements", "--threads",
                          "--line-search", "--cycle-damping", "--damping", "--hold-after",
                          "--normal-update", "--facing", "--end-spin", "--increments",
-                         "--tolerance"};
+                         "--tolerance", "--detail"};
   for (int i = 1; i < argc; i += 2) {
     const bool ok = std::any_of(std::begin(known), std::end(known),
                                 [&](const char* k) { return !std::strcmp(argv[i], k); });
@@ -158,6 +181,10 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[i], "--end-spin")) heldSpin = !std::strcmp(argv[i + 1], "held");
     if (!std::strcmp(argv[i], "--increments")) increments = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--tolerance")) tolerance = std::atof(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--detail")) {
+      iterations = !std::strcmp(argv[i + 1], "iterations");
+      detail = iterations || !std::strcmp(argv[i + 1], "on");
+    }
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   std::printf("threads %d, line search %s, cycle damping %s, damping %g, friction_hold_after %d, "
@@ -188,6 +215,6 @@ int main(int argc, char** argv) {
           s.contact.frictionHoldAfter = holdAfter;
           s.contact.normalUpdate = normalUpdate;
           s.contact.facingParticles = facing;
-          printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def));
+          printRow(load.c_str(), s.fibres.size(), elements, mu, p, run(s, def, detail, iterations));
         }
 }

@@ -137,6 +137,10 @@ struct StepReport {
                             // update: every fibre normal linearised after loop B's, or loop B's
                             // after the linearised ones the step kept (normal_update "auto")
   bool normalsLinearised = false;  // the last converged attempt linearised every fibre normal
+  bool normalsSwitched = false;    // an attempt of this increment converged with loop B's
+                                   // normals, slowly (normal_update "auto": more than
+                                   // max_iterations Newton iterations, more passes than
+                                   // detections); the step's next attempts linearise them
   int dampedSteps = 0;      // Newton steps the cycle damping halved, all attempts
                             // (systems/newton.h)
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt

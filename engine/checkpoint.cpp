@@ -39,9 +39,10 @@ namespace fibra {
 namespace {
 
 constexpr char kMagic[] = "fibra-checkpoint\n";
-constexpr std::uint32_t kFormat = 6;  // 3: the friction blocks on facing particles; 4: the forced
+constexpr std::uint32_t kFormat = 7;  // 3: the friction blocks on facing particles; 4: the forced
                                       // signs; 5: the steps of "auto"'s linearised normals; 6: the
-                                      // step whose damping_from "failure" continuation is on
+                                      // step whose damping_from "failure" continuation is on; 7:
+                                      // the step where a kept linearised attempt failed
 
 template <class T>
 struct IsArray : std::false_type {};
@@ -144,7 +145,7 @@ void field(A& a, T& v) {
 struct Carried {
   double time = 0, dt = 0;
   int step = 0, increment = 0, rateStep = -1, linearisedStep = -1, escalationFailedStep = -1,
-      dampedStep = -1;
+      linearisedFailedStep = -1, dampedStep = -1;
   Eigen::VectorXd q, convergedQ, convergedR, convergedFext, rate;
   EnergyStore energy;
   ContactState committed;
@@ -154,12 +155,14 @@ struct Carried {
 // The carried fields in the file's order.
 template <class A>
 void carried(A& a, double& time, int& step, int& increment, double& dt, int& rateStep,
-             int& linearisedStep, int& escalationFailedStep, int& dampedStep,
+             int& linearisedStep, int& escalationFailedStep, int& linearisedFailedStep,
+             int& dampedStep,
              Eigen::VectorXd& q, Eigen::VectorXd& convergedQ, Eigen::VectorXd& convergedR,
              Eigen::VectorXd& convergedFext, Eigen::VectorXd& rate, EnergyStore& energy,
              ContactState& committed, std::vector<std::uint64_t>& cliqueKeys) {
   field(a, time), field(a, step), field(a, increment), field(a, dt), field(a, rateStep);
-  field(a, linearisedStep), field(a, escalationFailedStep), field(a, dampedStep);
+  field(a, linearisedStep), field(a, escalationFailedStep), field(a, linearisedFailedStep);
+  field(a, dampedStep);
   field(a, q), field(a, convergedQ), field(a, convergedR), field(a, convergedFext), field(a, rate);
   field(a, energy);
   field(a, committed);
@@ -227,7 +230,7 @@ void saveCheckpoint(const WorldState& w, std::ostream& out) {
   header(a, format, version, indexSize, scene);
   WorldState& m = const_cast<WorldState&>(w);  // `field` reads and writes through one path
   carried(a, m.time, m.step, m.increment, m.dt, m.rateStep, m.linearisedStep,
-          m.escalationFailedStep, m.dampedStep, m.fibres.q, m.converged.q,
+          m.escalationFailedStep, m.linearisedFailedStep, m.dampedStep, m.fibres.q, m.converged.q,
           m.converged.r, m.converged.fext, m.rate, m.energy, m.committed, m.cliques.key);
   const std::string text = body.str();
   const std::uint64_t length = text.size();
@@ -287,7 +290,7 @@ void restoreCheckpoint(WorldState& s, std::istream& file) {
         ", this scene's " + hex(fingerprint(s)) + ")");
   Carried w;
   carried(a, w.time, w.step, w.increment, w.dt, w.rateStep, w.linearisedStep,
-          w.escalationFailedStep, w.dampedStep, w.q, w.convergedQ, w.convergedR,
+          w.escalationFailedStep, w.linearisedFailedStep, w.dampedStep, w.q, w.convergedQ, w.convergedR,
           w.convergedFext, w.rate, w.energy, w.committed, w.cliqueKeys);
   if (a.remaining != 0) throw CheckpointError("the file is corrupt (bytes after its end)");
   const Index dofs = Index(s.fibres.q.size());
@@ -297,12 +300,14 @@ void restoreCheckpoint(WorldState& s, std::istream& file) {
       (w.step < steps && w.increment >= s.scene.steps[size_t(w.step)].increments) ||
       w.rateStep < -1 || w.rateStep > steps || w.linearisedStep < -1 ||
       w.linearisedStep > steps || w.escalationFailedStep < -1 || w.escalationFailedStep > steps ||
+      w.linearisedFailedStep < -1 || w.linearisedFailedStep > steps ||
       w.dampedStep < -1 || w.dampedStep > steps ||
       (w.rateStep >= 0 && Index(w.rate.size()) != dofs))
     throw CheckpointError("the file is corrupt (its progress is not this scene's)");
 
   s.time = w.time, s.step = w.step, s.increment = w.increment, s.dt = w.dt, s.rateStep = w.rateStep;
   s.linearisedStep = w.linearisedStep, s.escalationFailedStep = w.escalationFailedStep;
+  s.linearisedFailedStep = w.linearisedFailedStep;
   s.dampedStep = w.dampedStep;
   s.fibres.q = std::move(w.q);
   s.converged.q = std::move(w.convergedQ);

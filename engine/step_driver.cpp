@@ -134,9 +134,10 @@ void noteFailure(StepReport& rep, const std::string& followed, double tTry,
 // Contact normal_update "auto": an attempt that failed with the loop's normals (the fixed point
 // of loop B, the frictionless parallel ones linearised where it diverged) is tried again, from
 // the same start and at the same size, with every fibre normal linearised (as "newton");
-// converged, the step keeps them (linearisedStep); failed, then or in a later attempt, the step
-// goes back to the loop's normals for good (escalationFailedStep), a kept attempt retried with
-// them at the same size. A failed retry leaves the step where the attempt before it was: what
+// converged, the step keeps them (linearisedStep); failed, the step retries no more
+// (escalationFailedStep). A kept attempt (after a retry or a switch, slowNormalLoop) that fails
+// is retried with the loop's normals at the same size, and the step keeps those for good
+// (linearisedFailedStep). A failed retry leaves the step where the attempt before it was: what
 // follows (predictor off, or the cutback's size) is judged by that attempt.
 // Returns whether the attempt at tTry is to be tried again; `escalating` says whether that retry
 // linearises every normal.
@@ -147,12 +148,12 @@ bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& esca
     return false;
   std::string retry;
   if (!w.contact.allNormals) {
-    if (w.escalationFailedStep == w.step) return false;
+    if (w.escalationFailedStep == w.step || w.linearisedFailedStep == w.step) return false;
     escalating = true;
     retry = "every fibre normal linearised";
   } else {
     const bool kept = w.linearisedStep == w.step;
-    w.escalationFailedStep = w.step;
+    (kept ? w.linearisedFailedStep : w.escalationFailedStep) = w.step;
     w.linearisedStep = -1;
     if (!kept) return false;
     retry = "loop B's normals again";
@@ -160,6 +161,21 @@ bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& esca
   ++rep.normalRetries;
   noteFailure(rep, retry, tTry, nr);
   return true;
+}
+
+// Contact normal_update "auto", without a failure: an accepted attempt with loop B's normals that
+// took more than max_iterations Newton iterations over its passes, and more Newton passes than
+// detections (loop B updated the normals and solved again), has paid for the normals' fixed
+// point; the step's next attempts linearise every fibre normal (linearisedStep), unless a kept
+// linearised attempt of the step has failed already (a failed retry does not stop it: the
+// first contact increment's retry may fail from its start where later ones converge). A
+// linearised attempt that then fails is retried with loop B's normals at its size
+// (retryNormals), and the step keeps those.
+bool slowNormalLoop(const WorldState& w, const StepDef& st, const NewtonResult& nr,
+                    const ContactReport& c) {
+  return w.contact.escalateNormals && w.contact.fibres && !w.contact.allNormals &&
+         w.linearisedFailedStep != w.step && nr.iterations > st.maxIterations &&
+         c.normalLoops > c.detectionLoops;
 }
 
 // Size of the next attempt after this one (pseudo-time): doubled after an attempt whose longest
@@ -406,7 +422,9 @@ StepReport advance(WorldState& w) {
       rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
       rep.predicted += w.predict;
       commit(w, tTry);
-      if (w.contact.allNormals) w.linearisedStep = w.step;
+      const bool slow = slowNormalLoop(w, st, nr, rep.contact);
+      rep.normalsSwitched |= slow;
+      if (w.contact.allNormals || slow) w.linearisedStep = w.step;
       rep.normalsLinearised = w.contact.allNormals;
       escalating = false;
       rep.iterations = nr.iterations;

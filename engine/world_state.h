@@ -83,8 +83,10 @@ struct WorldState {
   bool predict = false;      // whether the attempt in progress starts from the predictor
   // contact normal_update "auto" (engine/step_driver.cpp): the step whose attempts linearise
   // every fibre normal (one of its attempts failed with the loop's normals and converged
-  // linearised), and the step where a linearised retry failed (no more retries there); -1: none.
-  int linearisedStep = -1, escalationFailedStep = -1;
+  // linearised, or converged slowly with them), the step where a linearised retry failed (no
+  // more retries there), and the step where a kept linearised attempt failed (no more retries
+  // nor switches there); -1: none.
+  int linearisedStep = -1, escalationFailedStep = -1, linearisedFailedStep = -1;
   // Step `damping_from` "failure": the step whose viscous continuation is on (an increment of it
   // failed without), -1: none.
   int dampedStep = -1;
