@@ -55,7 +55,8 @@ std::string lawLine(const ContactParams& c) {
     out += ", frictionless parallel normals linearised in Newton once loop B diverges";
   if (c.fibres && c.escalateNormals)
     out += ", every fibre normal linearised after a failed attempt (retried) or a slow loop B "
-           "(kept to the step's end where it converges)";
+           "(kept while it converges; a failed linearised attempt goes back to loop B for the "
+           "step)";
   if (c.mu > 0 || c.tools)  // friction is possible (tools carry their own mu)
     out += c.frictionFlips > 0 ? format(", stick/slip held after %d changes (tolerance %g)",
                                         c.frictionFlips, c.frictionTolerance)
@@ -403,6 +404,52 @@ void printIteration(const Progress& p) {
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
+namespace {
+
+// The increment's changes of how the fibre normals enter Newton (contact normal_update "auto"),
+// in order, and what the step's next attempts use (`stepEnds`: none follow); the rules once per
+// run.
+void printNormalChanges(const StepReport& r, bool stepEnds, Explained& explained) {
+  std::string line;
+  bool linearised = false;
+  for (const NormalChange c : r.normalChanges) {
+    line += line.empty() ? "" : "; ";
+    switch (c) {
+      case NormalChange::RetryConverged:
+        line += "an attempt that failed with loop B's normals converged with every fibre normal "
+                "linearised";
+        linearised = true;
+        break;
+      case NormalChange::RetryFailed:
+        line += "an attempt that failed with loop B's normals failed again with every fibre "
+                "normal linearised (no more such retries in this step)";
+        linearised = false;
+        break;
+      case NormalChange::Switched:
+        line += "an attempt converged slowly with loop B's normals";
+        linearised = true;
+        break;
+      case NormalChange::BackToLoop:
+        line += "an attempt with every fibre normal linearised failed and was tried again with "
+                "loop B's normals";
+        linearised = false;
+        break;
+    }
+  }
+  const char* rest = stepEnds     ? "the step ends here"
+                     : linearised ? "the step goes on with every fibre normal linearised in Newton"
+                                  : "the step goes on with loop B's normals to its end";
+  std::fprintf(stderr, "  normals: %s; %s%s\n", line.c_str(), rest,
+               explained.normalChanges ? ""
+                                       : " (contact.normal_update \"auto\": a failed attempt is "
+                                         "tried again linearised, a slow loop B switches, a failed "
+                                         "linearised attempt goes back to loop B for the step; "
+                                         "normal_retries in the history; docs/CONTACT.md 1.5)");
+  explained.normalChanges = true;
+}
+
+}  // namespace
+
 void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Explained& explained) {
   if (v == Verbosity::Quiet) return;
   const StepDef& st = scene.steps[r.step];
@@ -438,23 +485,8 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
                  "in the history say how far a fresh detection would differ (said once)\n",
                  scene.contact.maxDetectionLoops);
   }
-  if (r.normalRetries > 0 && !explained.normalRetry) {
-    explained.normalRetry = true;
-    std::fprintf(stderr, "  note: %s (contact.normal_update \"auto\"; normal_retries in the "
-                         "history; said once)\n",
-                 r.normalsLinearised
-                     ? "an attempt failed with loop B's normals and converged with every fibre "
-                       "normal linearised in Newton; the rest of the step keeps them"
-                     : "a failed attempt, retried with every fibre normal linearised in Newton, "
-                       "failed again; the step goes on with loop B's normals");
-  }
-  if (r.normalsSwitched && !explained.normalSwitch) {
-    explained.normalSwitch = true;
-    std::fprintf(stderr, "  note: the increment converged with loop B's normals in more than "
-                         "max_iterations Newton iterations and more passes than detections; the "
-                         "step's next attempts linearise every fibre normal in Newton "
-                         "(contact.normal_update \"auto\"; said once)\n");
-  }
+  if (!r.normalChanges.empty())
+    printNormalChanges(r, r.increment == st.increments, explained);
   if (contact && c.normalRestarts > 0)
     std::fprintf(stderr,
                  "  note: loop B's normal updates diverged: the increment restarted with the "

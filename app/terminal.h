@@ -26,8 +26,7 @@ std::string startWarnings(const World& world);
 // What a run's terminal has explained once already (a mark that recurs gets its note once).
 struct Explained {
   bool loopCapped = false;  // "loop A capped"
-  bool normalRetry = false; // an attempt retried with every fibre normal linearised
-  bool normalSwitch = false; // a slow loop B switched the step to linearised normals
+  bool normalChanges = false;  // contact normal_update "auto": the rules of its changes
 };
 
 void printIteration(const Progress& p);

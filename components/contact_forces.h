@@ -23,10 +23,17 @@ struct SectionWeights {
   std::array<double, 5> tangent{};   // 1/mm
 };
 
-// The derivative of an element's force on I with respect to everything its normal and gap read
-// (systems/normal_linearisation.h): v = (x^I, x^J, x0I, x0J, dx0/ds|I, dx0/ds|J).
+// The derivatives of an element's forces on I with respect to everything its normal, gap and
+// slip read (systems/normal_linearisation.h): v = (x_N^I, x_N^J, x0I, x0J, dx0/ds|I, dx0/ds|J,
+// x^I, x^J), x_N the points the normal force acts on (the facing particles, else the material
+// ones), x the material particles (the friction force's).
 struct NormalJacobian {
-  Eigen::Matrix<double, 3, 18> dfdv = Eigen::Matrix<double, 3, 18>::Zero();  // N/mm, N
+  using Block = Eigen::Matrix<double, 3, 24>;
+  Block dfN = Block::Zero();  // d(R_N N)/dv, N/mm, N
+  Block dfT = Block::Zero();  // d f_T/dv (friction), N/mm, N
+  // rows 2s, 2s + 1: d xi/dv of side s's facing point (xi its coordinates on the directors, mm)
+  // through N alone (the directors' part is the rolling stiffness); zero without facing points
+  Eigen::Matrix<double, 4, 24> dxi = Eigen::Matrix<double, 4, 24>::Zero();  // mm/mm, mm
   SectionWeights I, J;
 };
 
@@ -41,10 +48,11 @@ struct ContactForceStore {
   std::vector<Vec3> gRev;           // reversible slip, mm
   std::vector<std::uint8_t> slip;   // 1 when the trial slip left the disc of radius g_T,max
   // with the normal linearised (contact.normal_update "newton", fibre-fibre elements; else
-  // empty): df/dv and the sections' weights; an element with I.count == 0 uses `stiffness`
+  // empty): the forces' derivatives and the sections' weights (with contact.facing_particles its
+  // normal force acts on the facing particles below, facing 1); an element with I.count == 0
+  // uses `stiffness`
   std::vector<NormalJacobian> normalJacobian;
-  // With contact.facing_particles (else empty), fibre-fibre elements with a fixed normal
-  // (systems/facing_particles.h): the particles the normal force acted on, the points of the two
+  // With contact.facing_particles (else empty), fibre-fibre elements (systems/facing_particles.h): the particles the normal force acted on, the points of the two
   // outlines extremal along N at this evaluation (facing 1; 0: the element's material
   // particles), and the outlines' rolling stiffness as weights c = sqrt(R / rho) N_a v on the
   // directors (sqrt(mm), per side), with K += R_N (c (x) N)(c (x) N)^T. On a facing element

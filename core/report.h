@@ -4,6 +4,7 @@
 
 #include "core/types.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -121,6 +122,15 @@ struct LinearReport {
   int krylovFailures = 0;       // solves that missed krylov_tolerance even with a fresh factor
 };
 
+// A change of how the fibre normals enter Newton within a step (contact normal_update "auto",
+// engine/step_driver.cpp retryNormals and slowNormalLoop).
+enum class NormalChange : std::uint8_t {
+  RetryConverged,  // a failed attempt retried with every fibre normal linearised converged: kept
+  RetryFailed,     // that retry failed too: loop B's normals, no more retries in the step
+  Switched,        // an attempt converged slowly with loop B's normals: the next ones linearise
+  BackToLoop,      // a kept linearised attempt failed: retried with loop B's normals, kept
+};
+
 struct StepReport {
   StepStatus status = StepStatus::Finished;
   int step = -1;            // scene step index
@@ -141,6 +151,7 @@ struct StepReport {
                                    // normals, slowly (normal_update "auto": more than
                                    // max_iterations Newton iterations, more passes than
                                    // detections); the step's next attempts linearise them
+  std::vector<NormalChange> normalChanges;  // normal_update "auto": what changed, in order
   int dampedSteps = 0;      // Newton steps the cycle damping halved, all attempts
                             // (systems/newton.h)
   double smallestIncrement = 0;  // pseudo-time size of the smallest converged attempt

@@ -139,28 +139,41 @@ void noteFailure(StepReport& rep, const std::string& followed, double tTry,
 // is retried with the loop's normals at the same size, and the step keeps those for good
 // (linearisedFailedStep). A failed retry leaves the step where the attempt before it was: what
 // follows (predictor off, or the cutback's size) is judged by that attempt.
-// Returns whether the attempt at tTry is to be tried again; `escalating` says whether that retry
-// linearises every normal.
-bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& escalating,
-                  StepReport& rep) {
+// A retry needs a fibre normal that linearising changes (`linearisable`: the failed attempt's
+// last detection has one that is neither forced nor an end face's); without one it would repeat
+// the attempt exactly. Returns whether the attempt at tTry is to be tried again; `escalating`
+// says whether that retry linearises every normal. Each change goes into rep.normalChanges.
+bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool linearisable,
+                  bool& escalating, StepReport& rep) {
   escalating = false;
   if (!w.contact.escalateNormals || !w.contact.fibres || nr.outcome != NewtonOutcome::Failed)
     return false;
   std::string retry;
   if (!w.contact.allNormals) {
-    if (w.escalationFailedStep == w.step || w.linearisedFailedStep == w.step) return false;
+    if (w.escalationFailedStep == w.step || w.linearisedFailedStep == w.step || !linearisable)
+      return false;
     escalating = true;
     retry = "every fibre normal linearised";
   } else {
     const bool kept = w.linearisedStep == w.step;
     (kept ? w.linearisedFailedStep : w.escalationFailedStep) = w.step;
     w.linearisedStep = -1;
+    rep.normalChanges.push_back(kept ? NormalChange::BackToLoop : NormalChange::RetryFailed);
     if (!kept) return false;
     retry = "loop B's normals again";
   }
   ++rep.normalRetries;
   noteFailure(rep, retry, tTry, nr);
   return true;
+}
+
+// Whether the attempt's last detection (w.trial) has a fibre-fibre element whose normal "auto"
+// would linearise: not forced (constant) and not an end face's (systems/normal_linearisation.h).
+bool anyLinearisable(const WorldState& w) {
+  const ContactElementStore& el = w.trial.elements;
+  for (Index e = 0; e < el.size(); ++e)
+    if (!(el.fallback[e] & (kEndFaceI | kEndFaceJ)) && !el.forced[e]) return true;
+  return false;
 }
 
 // Contact normal_update "auto", without a failure: an accepted attempt with loop B's normals that
@@ -170,10 +183,11 @@ bool retryNormals(WorldState& w, const NewtonResult& nr, double tTry, bool& esca
 // linearised attempt of the step has failed already (a failed retry does not stop it: the
 // first contact increment's retry may fail from its start where later ones converge). A
 // linearised attempt that then fails is retried with loop B's normals at its size
-// (retryNormals), and the step keeps those.
+// (retryNormals), and the step keeps those. Nothing switches where no attempt of the step follows
+// (`stepGoesOn` false: the step's last increment has reached its end).
 bool slowNormalLoop(const WorldState& w, const StepDef& st, const NewtonResult& nr,
-                    const ContactReport& c) {
-  return w.contact.escalateNormals && w.contact.fibres && !w.contact.allNormals &&
+                    const ContactReport& c, bool stepGoesOn) {
+  return stepGoesOn && w.contact.escalateNormals && w.contact.fibres && !w.contact.allNormals &&
          w.linearisedFailedStep != w.step && nr.iterations > st.maxIterations &&
          c.normalLoops > c.detectionLoops;
 }
@@ -388,9 +402,13 @@ StepReport advance(WorldState& w) {
   w.cancel.arm(w.def.cancel);
 
   // Stops at the last converged state with a status and a message.
+  // A failure's message ends with the increment's failed attempts before it.
   const auto stop = [&](StepStatus status, const std::string& message) {
     rep.status = status;
-    rep.message = message;
+    rep.message = status != StepStatus::Failed || rep.message.empty()
+                      ? message
+                      : message + " (the increment's failed attempts before it, what followed "
+                                  "at t: why: " + rep.message + ")";
     rep.time = w.time;
     rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
     rep.timings.total = elapsed();
@@ -410,7 +428,7 @@ StepReport advance(WorldState& w) {
       return stop(StepStatus::Failed, "increment to t = " + number(t1) +
                                           " failed: the attempt size fell to " +
                                           number(tTry - w.time) +
-                                          ", the round-off of the pseudo-time (" + rep.message + ")");
+                                          ", the round-off of the pseudo-time");
     w.predict = st.predictor && !retried && w.rateStep == w.step;
     w.contact.allNormals = escalating || w.linearisedStep == w.step;
     const NewtonResult nr = attempt(w, st, tTry, tStart, rep);
@@ -422,8 +440,11 @@ StepReport advance(WorldState& w) {
       rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
       rep.predicted += w.predict;
       commit(w, tTry);
-      const bool slow = slowNormalLoop(w, st, nr, rep.contact);
+      const bool stepGoesOn = tTry < t1 || w.increment + 1 < st.increments;
+      const bool slow = slowNormalLoop(w, st, nr, rep.contact, stepGoesOn);
       rep.normalsSwitched |= slow;
+      if (escalating) rep.normalChanges.push_back(NormalChange::RetryConverged);
+      if (slow) rep.normalChanges.push_back(NormalChange::Switched);
       if (w.contact.allNormals || slow) w.linearisedStep = w.step;
       rep.normalsLinearised = w.contact.allNormals;
       escalating = false;
@@ -433,9 +454,10 @@ StepReport advance(WorldState& w) {
       retried = false;
       continue;
     }
+    const bool linearisable = anyLinearisable(w);
     discard(w);
     const bool wasRetry = escalating;
-    if (retryNormals(w, nr, tTry, escalating, rep)) {
+    if (retryNormals(w, nr, tTry, linearisable, escalating, rep)) {
       if (escalating) beforeRetry = nr;
       continue;
     }

@@ -7,22 +7,29 @@ namespace fibra {
 namespace {
 
 // A column block of V = dv/dq: the clique-local DOF where it starts (node, field), the block of
-// v it feeds (0 x^I, 1 x^J, 2 x0I, 3 x0J, 4 dx0/ds|I, 5 dx0/ds|J) and its weight (-, mm, 1/mm).
+// v it feeds (0 x_N^I, 1 x_N^J, 2 x0I, 3 x0J, 4 dx0/ds|I, 5 dx0/ds|J, 6 x^I, 7 x^J) and its
+// weight (-, mm, 1/mm).
 struct VColumn {
   Index local;
   int block;
   double weight;
 };
 
-int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, const CliqueSlots& at,
-             const Index sideFirstNode[2], VColumn* out) {
+// The columns of V: the normal force's points (`normal`, blocks 0-1), the sections (2-5), the
+// material particles (`material`, 6-7).
+int vColumns(const ParticleWeights material[2], const ParticleWeights normal[2],
+             const NormalJacobian& jac, const CliqueSlots& at, const Index sideFirstNode[2],
+             VColumn* out) {
   int n = 0;
   for (int s = 0; s < 2; ++s)
-    for (int a = 0; a < side[s].nodes; ++a)
-      for (int k = 0; k < 3; ++k)
-        out[n++] = {kNodeDofs * (at.first[s] + a) + 3 * k, s, side[s].c[a][k]};
+    for (int a = 0; a < material[s].nodes; ++a)
+      for (int k = 0; k < 3; ++k) {
+        const Index local = kNodeDofs * (at.first[s] + a) + 3 * k;
+        if (normal[s].c[a][k] != 0) out[n++] = {local, s, normal[s].c[a][k]};
+        if (material[s].c[a][k] != 0) out[n++] = {local, 6 + s, material[s].c[a][k]};
+      }
   const SectionWeights* sw[2] = {&jac.I, &jac.J};
-  const int rangeStart[2] = {0, at.first[1] - int(side[1].firstNode - sideFirstNode[1])};
+  const int rangeStart[2] = {0, at.first[1] - int(material[1].firstNode - sideFirstNode[1])};
   const int rangeEnd[2] = {rangeStart[1], at.nodes};
   for (int s = 0; s < 2; ++s)
     for (int i = 0; i < sw[s]->count; ++i) {
@@ -33,6 +40,56 @@ int vColumns(const ParticleWeights side[2], const NormalJacobian& jac, const Cli
       if (sw[s]->tangent[i] != 0) out[n++] = {col, 4 + s, sw[s]->tangent[i]};
     }
   return n;
+}
+
+// K += -sum_s sign_s rows_s^T (block) V: a force on side I's points (`rows`), -it on J's, whose
+// derivative with respect to v is `block`.
+void addForceDerivative(const ParticleWeights rows[2], const NormalJacobian::Block& block,
+                        const VColumn* cols, int nc, Index clique, const CliqueSlots& at,
+                        LinearSystem& ls) {
+  const double sign[2] = {1, -1};
+  const Index n = kNodeDofs * at.nodes;
+  const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
+  double* values = ls.K.valuePtr();
+  for (int s = 0; s < 2; ++s)
+    for (int a = 0; a < rows[s].nodes; ++a)
+      for (int k = 0; k < 3; ++k) {
+        const double rw = sign[s] * rows[s].c[a][k];
+        if (rw == 0) continue;
+        const Index i0 = kNodeDofs * (at.first[s] + a) + 3 * k;
+        for (int c = 0; c < nc; ++c) {
+          const double w = -rw * cols[c].weight;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              if (const Index p = pos[(i0 + i) * n + cols[c].local + j]; p >= 0)
+                values[p] += w * block(i, 3 * cols[c].block + j);
+        }
+      }
+}
+
+// The facing points' motion with N: the rows of side s's directors g_f (f = 1, 2) carry
+// sign_s N_a xi_f f_N, so K += -sign_s N_a f_N (d xi_f/dv) V there.
+void addFacingMotion(const ParticleWeights material[2], const NormalJacobian& jac, const Vec3& fN,
+                     const VColumn* cols, int nc, Index clique, const CliqueSlots& at,
+                     LinearSystem& ls) {
+  const double sign[2] = {1, -1};
+  const Index n = kNodeDofs * at.nodes;
+  const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
+  double* values = ls.K.valuePtr();
+  for (int s = 0; s < 2; ++s)
+    for (int a = 0; a < material[s].nodes; ++a)
+      for (int f = 1; f <= 2; ++f) {
+        const double rw = sign[s] * material[s].c[a][0];
+        const Index i0 = kNodeDofs * (at.first[s] + a) + 3 * f;
+        for (int c = 0; c < nc; ++c)
+          for (int j = 0; j < 3; ++j) {
+            const double d = -rw * cols[c].weight * jac.dxi(2 * s + f - 1, 3 * cols[c].block + j);
+            if (d == 0) continue;
+            for (int i = 0; i < 3; ++i)
+              if (const Index p = pos[(i0 + i) * n + cols[c].local + j]; p >= 0)
+                values[p] += d * fN[i];
+          }
+      }
 }
 
 // An element on its facing particles (systems/facing_particles.h): the normal force R_N N and
@@ -62,31 +119,31 @@ void scatterFacing(const ParticleWeights material[2], const ContactForceStore& f
 
 }  // namespace
 
-void scatterLinearisedContact(const ParticleWeights side[2], const NormalJacobian& jac,
-                              const Vec3& f, Index clique, const CliqueSlots& at,
+void scatterLinearisedContact(const ParticleWeights material[2], const ContactForceStore& f,
+                              Index e, Index clique, const CliqueSlots& at,
                               const Index sideFirstNode[2], bool withTangent, LinearSystem& ls) {
-  const double sign[2] = {1, -1};
-  scatterContact(side, sign, 2, f, Eigen::Matrix3d::Zero(), clique, false, ls, &at);
+  const double sign[2] = {1, -1}, one = 1;
+  const bool facing = !f.facing.empty() && f.facing[e];
+  const ParticleWeights normal[2] = {facing ? f.facingI[e] : material[0],
+                                     facing ? f.facingJ[e] : material[1]};
+  const Vec3 fN = f.normalForce[e] * f.normal[e];
+  const Eigen::Matrix3d none = Eigen::Matrix3d::Zero();
+  scatterContact(normal, sign, 2, fN, none, clique, false, ls, &at);
+  scatterContact(material, sign, 2, f.force[e] - fN, none, clique, false, ls, &at);
   if (!withTangent) return;
-  VColumn cols[2 * 9 + 2 * 10];
-  const int nc = vColumns(side, jac, at, sideFirstNode, cols);
-  const Index n = kNodeDofs * at.nodes;
-  const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
-  double* values = ls.K.valuePtr();
-  for (int s = 0; s < 2; ++s)
-    for (int a = 0; a < side[s].nodes; ++a)
-      for (int k = 0; k < 3; ++k) {
-        const double rw = sign[s] * side[s].c[a][k];
-        if (rw == 0) continue;
-        const Index i0 = kNodeDofs * (at.first[s] + a) + 3 * k;
-        for (int c = 0; c < nc; ++c) {
-          const double w = -rw * cols[c].weight;
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-              if (const Index p = pos[(i0 + i) * n + cols[c].local + j]; p >= 0)
-                values[p] += w * jac.dfdv(i, 3 * cols[c].block + j);
-        }
-      }
+  const NormalJacobian& jac = f.normalJacobian[e];
+  VColumn cols[4 * 9 + 2 * 10];
+  const int nc = vColumns(material, normal, jac, at, sideFirstNode, cols);
+  addForceDerivative(normal, jac.dfN, cols, nc, clique, at, ls);
+  addForceDerivative(material, jac.dfT, cols, nc, clique, at, ls);
+  if (!facing) return;
+  addFacingMotion(material, jac, fN, cols, nc, clique, at, ls);
+  const Eigen::Matrix3d S = f.normalForce[e] * f.normal[e] * f.normal[e].transpose();
+  const ParticleWeights* rolling[2] = {&f.rollingI[e], &f.rollingJ[e]};
+  for (int s = 0; s < 2; ++s) {
+    const CliqueSlots side{{at.first[s], 0}, at.nodes};
+    scatterContact(rolling[s], &one, 1, Vec3::Zero(), S, clique, true, ls, &side);
+  }
 }
 
 void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore& f,
@@ -107,8 +164,8 @@ void scatterFibreContacts(const ContactElementStore& el, const ContactForceStore
             {int(sides[0].firstNode - l[0]), int(l[1] + sides[1].firstNode - l[2])},
             int(l[1] + l[3])};
         if (!f.normalJacobian.empty() && f.normalJacobian[e].I.count > 0) {
-          scatterLinearisedContact(sides, f.normalJacobian[e], f.force[e], c.firstClique + q,
-                                   slots, rangeFirst, input.withTangent, ls);
+          scatterLinearisedContact(sides, f, e, c.firstClique + q, slots, rangeFirst,
+                                   input.withTangent, ls);
         } else if (!f.facing.empty() && f.facing[e]) {
           scatterFacing(sides, f, e, c.firstClique + q, slots, input.withTangent, ls);
         } else {

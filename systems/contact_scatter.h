@@ -81,12 +81,15 @@ inline void scatterContact(const ParticleWeights* side, const double* sign, int 
 }
 
 // An element with a linearised normal (ContactForceStore::normalJacobian,
-// systems/normal_linearisation.h): r -= D^T f as above, and K += D^T (-df/dv) V with
-// V = dv/dq, v = (x^I, x^J, x0I, x0J, dx0/ds|I, dx0/ds|J): the particles' weights for x^I, x^J,
-// the sections' weights on the nodal x0 for the rest; sideFirstNode[s]: the global node at the
-// start of side s's range in the (possibly widened) clique. Not thread-safe on its own.
-void scatterLinearisedContact(const ParticleWeights side[2], const NormalJacobian& jacobian,
-                              const Vec3& f, Index clique, const CliqueSlots& slots,
+// systems/normal_linearisation.h): r -= D_N^T f_N + D^T f_T, K += D_N^T (-df_N/dv) V +
+// D^T (-df_T/dv) V with V = dv/dq, v = (x_N^I, x_N^J, x0I, x0J, dx0/ds|I, dx0/ds|J, x^I, x^J):
+// the normal force's points (facing ones with contact.facing_particles, else the material
+// `sides`) and the material particles by their weights, the sections' weights on the nodal x0
+// for the rest; with facing points also their motion (through N: NormalJacobian::dxi; through
+// the directors: the rolling stiffness, as scatterFacing). sideFirstNode[s]: the global node at
+// the start of side s's range in the (possibly widened) clique. Not thread-safe on its own.
+void scatterLinearisedContact(const ParticleWeights sides[2], const ContactForceStore& forces,
+                              Index e, Index clique, const CliqueSlots& slots,
                               const Index sideFirstNode[2], bool withTangent, LinearSystem& ls);
 
 void scatterFibreContacts(const ContactElementStore& elements, const ContactForceStore& forces,

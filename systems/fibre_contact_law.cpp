@@ -39,10 +39,17 @@ void evaluateFibreContacts(const FibreStore& fs, const ContactParams& p, const Z
     const ContactLawParams law{zones.penalty[z] * el.weight[e], p.pRegRatio * zones.pMax[z],
                                zones.friction[z] * p.frictionFactor, p.gMax};
     if (linearisedNormal(p, el, e)) {
-      const LinearisedContact c =
-          linearisedContact(fs, fs.q, el, e, law, p.thetaParallel, p.thetaCross);
+      const LinearisedContact c = linearisedContact(fs, fs.q, el, e, law, p.thetaParallel,
+                                                    p.thetaCross, status.held[e],
+                                                    p.facingParticles);
       storeContactLaw(c.law, e, out);
       out.normalJacobian[e] = c.jacobian;
+      if (c.facing) {
+        out.facing[e] = 1;
+        out.facingI[e] = c.I.particle, out.facingJ[e] = c.J.particle;
+        out.rollingI[e] = c.I.rolling, out.rollingJ[e] = c.J.rolling;
+      }
+      trackFrictionStatus(status, e, c.law, input.withTangent, p.frictionFlips);
       return;
     }
     // a forced element's allowance widens its gap: d shifted along N (a constant of q; N's

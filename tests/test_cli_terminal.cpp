@@ -176,7 +176,8 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
         "placement weighted, normals "
         "updated by loop B (Anderson memory 3 when unstable), frictionless parallel normals "
         "linearised in Newton once loop B diverges, every fibre normal linearised after a failed "
-        "attempt (retried) or a slow loop B (kept to the step's end where it converges), stick/slip "
+        "attempt (retried) or a slow loop B (kept while it converges; a failed linearised attempt "
+        "goes back to loop B for the step), stick/slip "
         "held after 2 "
         "changes (tolerance 0.01)\n",
         "  contact classes: warp (3 fibres), weft (3 fibres)\n",
@@ -396,12 +397,13 @@ TEST_CASE("fibra run explains a capped loop A once and counts in the singular fo
   CHECK(countLines(r.output, R"(^step .* t = \S+ +[2-9] iterations  residual)") >= 1);
 }
 
-TEST_CASE("fibra run explains once an attempt retried with every fibre normal linearised") {
-  // A 7-fibre bundle clamped at both ends, pulled and twisted a quarter turn in 3 increments,
-  // mu = 0.3, p_max 1e-4 (the scenes of tests/test_normal_update_auto.cpp): the twist's first
+TEST_CASE("fibra run says how the fibre normals change in a step, the rules once") {
+  // A 7-fibre bundle clamped at both ends, pulled and twisted a quarter turn in 4 increments,
+  // mu = 0.3, p_max 5e-4 (the scenes of tests/test_normal_update_auto.cpp): the twist's first
   // attempt fails with loop B's normals and converges linearised (contact normal_update
-  // "auto"); in 6 increments, p_max 5e-4, its first increment converges slowly with loop B's
-  // normals and the step switches to linearised ones.
+  // "auto"); in 6 increments its first increment converges slowly with loop B's normals and the
+  // step switches to linearised ones; at mu = 0.1, p_max 2e-4 the switch comes first and the
+  // last increment goes back to loop B's normals.
   TempDir scratch("cli_normal_retry");
   fs::create_directories(scratch.path());
   const auto run = [&](const nlohmann::json& scene, const std::string& name) {
@@ -414,9 +416,9 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
   nlohmann::json j = {{"units", "mm-N-MPa"},
                       {"materials", {{{"name", "m"}, {"young_modulus", 4000}, {"poisson_ratio", 0.3}}}},
                       {"tables", {{"twist", {{0, 0}, {1, 0}, {2, 1.5707963267948966}}}}},
-                      {"contact", {{"friction", 0.3}, {"max_penetration", 1e-4}}},
+                      {"contact", {{"friction", 0.3}, {"max_penetration", 5e-4}}},
                       {"steps", {{{"end_time", 1}, {"increments", 2}},
-                                 {{"end_time", 2}, {"increments", 3}}}},
+                                 {{"end_time", 2}, {"increments", 4}}}},
                       {"output", {{"vtu", false}}}};
   for (int i = 0; i < 7; ++i) {
     const double a = (i - 1) * 3.14159265358979323846 / 3, y = i ? 0.2 * std::cos(a) : 0,
@@ -431,14 +433,15 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
          {"rotation", {{"axis", {1, 0, 0}}, {"centre", {2, 0, 0}}, {"angle", "twist"}}}});
   }
   const std::string twist = run(j, "twist");
-  CHECK(countLines(twist, R"(^  note: an attempt failed with loop B's normals and converged )"
-                             R"(with every fibre normal linearised in Newton; the rest of the )"
-                             R"(step keeps them \(contact.normal_update "auto")") == 1);
+  CHECK(countLines(twist, R"(^  normals: an attempt that failed with loop B's normals converged )"
+                             R"(with every fibre normal linearised; the step goes on with every )"
+                             R"(fibre normal linearised in Newton \(contact.normal_update "auto": )") == 1);
   CHECK(countLines(twist, R"(every fibre normal linearised after a failed attempt \(retried\) or )"
-                             R"(a slow loop B \(kept to the step's end where it converges\))") == 1);
-  CHECK(countLines(twist, "note: the increment converged with loop B's normals") == 0);
+                             R"(a slow loop B \(kept while it converges; a failed linearised )"
+                             R"(attempt goes back to loop B for the step\))") == 1);
+  CHECK(countLines(twist, "converged slowly with loop B's normals") == 0);
   const auto history = readCsv(scratch / "twist" + "/history.csv");
-  REQUIRE(history.size() == 6);
+  REQUIRE(history.size() == 7);  // the header and 6 increments
   const auto column = std::find(history[0].begin(), history[0].end(), "normal_retries");
   REQUIRE(column != history[0].end());
   int retries = 0;
@@ -446,14 +449,24 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
     retries += std::stoi(history[row][size_t(column - history[0].begin())]);
   CHECK(retries >= 1);
 
-  j["contact"]["max_penetration"] = 5e-4;
   j["steps"][1]["increments"] = 6;
   const std::string slow = run(j, "slow");
-  CHECK(countLines(slow, R"(^  note: the increment converged with loop B's normals in more than )"
-                            R"(max_iterations Newton iterations and more passes than detections; )"
-                            R"(the step's next attempts linearise every fibre normal in Newton )"
-                            R"(\(contact.normal_update "auto"; said once\)$)") == 1);
-  CHECK(countLines(slow, "^  note: an attempt failed with loop B's normals") == 0);
+  CHECK(countLines(slow, R"(^  normals: an attempt converged slowly with loop B's normals; the )"
+                            R"(step goes on with every fibre normal linearised in Newton )"
+                            R"(\(contact.normal_update "auto": )") == 1);
+  CHECK(countLines(slow, "^  normals: ") == 1);  // nothing failed: one change, one line
+
+  // mu = 0.1, p_max 2e-4, 4 increments: the first switches, the last one's linearised attempt
+  // fails and is tried again with loop B's normals; the rules were said at the switch, not again.
+  j["contact"]["friction"] = 0.1;
+  j["contact"]["max_penetration"] = 2e-4;
+  j["steps"][1]["increments"] = 4;
+  const std::string back = run(j, "back");
+  CHECK(countLines(back, R"(^  normals: an attempt converged slowly with loop B's normals; )") == 1);
+  CHECK(countLines(back, R"(^  normals: an attempt with every fibre normal linearised failed and )"
+                            R"(was tried again with loop B's normals; the step ends here$)") == 1);
+  CHECK(countLines(back, R"(^  failed attempts \(what followed at t: why\): loop B's normals )"
+                            R"(again at t = 2: )") == 1);
 
   // The sliding beams' first increment: the retry fails as well, and the note says so.
   nlohmann::json beams =
@@ -462,9 +475,10 @@ TEST_CASE("fibra run explains once an attempt retried with every fibre normal li
   beams["output"]["plots"] = nlohmann::json::array();
   beams["output"]["vtu"] = false;
   const std::string sliding = run(beams, "beams");
-  CHECK(countLines(sliding, R"(^  note: a failed attempt, retried with every fibre normal )"
-                             R"(linearised in Newton, failed again; the step goes on with loop )"
-                             R"(B's normals)") == 1);
+  CHECK(countLines(sliding, R"(^  normals: an attempt that failed with loop B's normals failed )"
+                             R"(again with every fibre normal linearised \(no more such retries )"
+                             R"(in this step\); the step goes on with loop B's normals to its )"
+                             R"(end \(contact.normal_update)") == 1);
   // The increment's failed attempts, each under what followed it: the retry, then cutbacks.
   CHECK(countLines(sliding, R"(^  failed attempts \(what followed at t: why\): every fibre )"
                              R"(normal linearised at t = 0\.04: .*; cutback at t = 0\.04: )") == 1);

@@ -10,6 +10,7 @@
 #include "io/scene_loader.h"
 #include "systems/contact_geometry.h"
 #include "systems/contact_normals.h"
+#include "systems/particle.h"
 
 #include <doctest/doctest.h>
 
@@ -115,6 +116,85 @@ TEST_CASE("linearised normal tangent matches finite differences with friction, s
       int slipping = 0;
       for (std::uint8_t s : w.trial.forces.slip) slipping += s;
       CHECK((slipping > 0) == (slide > 1e-3));
+      CHECK(tangentError(w) <= 1e-6);
+    }
+}
+
+TEST_CASE("linearised normal: a stick/slip status held for the pass takes its branch, tangent exact") {
+  // contact friction_hold_after (systems/friction_status.h) applies to the linearised elements as
+  // to the fixed-normal ones: a slide of 3e-3 mm would slip (|trial| > g_max) and 1e-5 mm stick;
+  // held the other way, every active element takes the held branch (stick: |f_T| = mu R_N
+  // |trial| / g_max > mu R_N; slip: = mu R_N), the tracking sees the trial ratio, and the
+  // tangent still matches central differences (the branch is fixed for the pass).
+  for (double slide : {1e-5, 3e-3}) {
+    CAPTURE(slide);
+    const bool wouldSlip = slide > 1e-3;
+    WorldState w;
+    pressedPair(w, 12 * kDeg, 0.3, 1e-3, Vec3(0.3 * slide, slide, 0));
+    runStage(w, w.pipeline.assemble, 0, true);
+    REQUIRE(activeElements(w) > 0);
+    FrictionStatusStore& status = w.trial.frictionStatus;
+    REQUIRE(status.size() == w.trial.forces.size());
+    for (Index e = 0; e < status.size(); ++e) {
+      if (w.trial.forces.normalForce[e] > 0) CHECK(status.trialRatio[e] > 0);
+      status.held[e] = wouldSlip ? kStatusStick : kStatusSlip;
+    }
+    runStage(w, w.pipeline.assemble, 0, true);
+    const ContactForceStore& f = w.trial.forces;
+    int checked = 0;
+    for (Index e = 0; e < f.size(); ++e) {
+      if (!(f.normalForce[e] > 0)) continue;
+      ++checked;
+      CHECK(bool(f.slip[e]) == !wouldSlip);
+      const double ratio = f.gRev[e].norm() / 5e-4;  // |g_rev| / g_max
+      if (wouldSlip) CHECK(ratio > 1);                // held in stick beyond the circle
+      else CHECK(ratio == doctest::Approx(1));       // held in slip inside it
+    }
+    CHECK(checked > 0);
+    CHECK(tangentError(w) <= 1e-6);
+  }
+}
+
+TEST_CASE("linearised normal on facing particles: a spun section's normal force passes its axis, tangent exact") {
+  // B's sections spun 25 deg about its axis after detection: its material particles roll off
+  // the line of centres. With contact.facing_particles (the default) the linearised element
+  // measures its gap on, and puts its normal force on, the outlines' points extremal along N
+  // (facing 1), so the normal force has no moment about B's axis, and the tangent (with the
+  // facing points' motion through the directors and through N) matches central differences,
+  // frictionless and with friction in stick and slip.
+  for (double mu : {0.0, 0.3})
+    for (double slide : {1e-5, 3e-3}) {
+      CAPTURE(mu);
+      CAPTURE(slide);
+      WorldState w;
+      const double angle = 12 * kDeg;
+      pressedPair(w, angle, mu, 1e-3, Vec3(0.3 * slide, slide, 0));
+      const Vec3 axis(std::cos(angle), std::sin(angle), 0);
+      const Eigen::Matrix3d spin = Eigen::AngleAxisd(25 * kDeg, axis).toRotationMatrix();
+      const Index first = w.fibres.firstNode[1];
+      for (Index n = first; n < first + w.fibres.nodeCount[1]; ++n)
+        for (int g : {3, 6}) w.fibres.q.segment<3>(kNodeDofs * n + g) =
+            spin * w.fibres.q.segment<3>(kNodeDofs * n + g);
+      runStage(w, w.pipeline.assemble, 0, true);
+      REQUIRE(activeElements(w) > 0);
+      const ContactForceStore& f = w.trial.forces;
+      for (Index e = 0; e < f.size(); ++e) {
+        if (!(f.normalForce[e] > 0)) continue;
+        REQUIRE(f.facing[e] == 1);
+        // B is side I or J: the normal force's point on B, its moment arm about B's axis
+        const bool bIsI = w.trial.elements.fibreI[e] == 1;
+        const ParticleWeights& onB = bIsI ? f.facingI[e] : f.facingJ[e];
+        const ParticleWeights& materialB = bIsI ? w.trial.elements.sideI[e] : w.trial.elements.sideJ[e];
+        ParticleWeights centre = onB;
+        for (int a = 0; a < centre.nodes; ++a) centre.c[a][1] = centre.c[a][2] = 0;
+        const Vec3 x0 = particlePosition(w.fibres.q, centre);
+        const Vec3 arm = particlePosition(w.fibres.q, onB) - x0;
+        const Vec3 fN = f.normalForce[e] * f.normal[e];
+        CHECK(std::abs(arm.cross(fN).dot(axis)) <= 1e-9 * fN.norm() * 0.1);
+        // the material particle has rolled away: its moment would not vanish
+        const Vec3 rolled = particlePosition(w.fibres.q, materialB) - x0;
+        CHECK(std::abs(rolled.cross(fN).dot(axis)) > 0.1 * 0.1 * fN.norm());
+      }
       CHECK(tangentError(w) <= 1e-6);
     }
 }
