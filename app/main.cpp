@@ -290,6 +290,8 @@ int solve(World& world, Outputs& outputs, Verbosity verbosity) {
     }
     std::fprintf(stderr, "fibra: step %d/%zu, increment %d failed: %s\n", r.step + 1,
                  scene.steps.size(), r.increment, r.message.c_str());
+    if (!r.normalChanges.empty() && verbosity != Verbosity::Quiet)
+      terminal::printNormalChanges(r, false, explained);
     summary("failed, wrote the last converged state");
     return kFailed;
   }

@@ -263,8 +263,9 @@ std::string contactLines(const World& world) {
                   c.pairs.pMax[0], c.pairs.mu[0], degrees(c.thetaCross), degrees(c.thetaParallel),
                   c.selfContact ? "on" : "off", c.maxDetectionLoops, c.maxNormalLoops,
                   c.followCrossings ? ", crossings follow the closest points" : "",
-                  c.facingParticles ? ", frictionless forces on facing particles"
-                                    : ", frictionless forces on material particles (the paper's)");
+                  c.facingParticles
+                      ? ", normal forces on facing particles (friction on material ones)"
+                      : ", normal forces on material particles (the paper's)");
   out += selfSeparationLine(world, c) + lawLine(c);
   if (c.fibres) out += classesLine(s) + pairLines(s, c.pairs) + forcedLines(world, c);
   if (c.tools) out += toolLines(world);
@@ -404,11 +405,6 @@ void printIteration(const Progress& p) {
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
-namespace {
-
-// The increment's changes of how the fibre normals enter Newton (contact normal_update "auto"),
-// in order, and what the step's next attempts use (`stepEnds`: none follow); the rules once per
-// run.
 void printNormalChanges(const StepReport& r, bool stepEnds, Explained& explained) {
   std::string line;
   bool linearised = false;
@@ -436,9 +432,14 @@ void printNormalChanges(const StepReport& r, bool stepEnds, Explained& explained
         break;
     }
   }
-  const char* rest = stepEnds     ? "the step ends here"
-                     : linearised ? "the step goes on with every fibre normal linearised in Newton"
-                                  : "the step goes on with loop B's normals to its end";
+  const NormalChange last = r.normalChanges.back();
+  const char* rest = r.status == StepStatus::Failed ? "the increment failed"
+                     : stepEnds ? "the step ends here"
+                     : linearised
+                         ? "the step goes on with every fibre normal linearised in Newton"
+                     : last == NormalChange::BackToLoop
+                         ? "the step goes on with loop B's normals to its end"
+                         : "the step goes on with loop B's normals (a slow loop B may still switch)";
   std::fprintf(stderr, "  normals: %s; %s%s\n", line.c_str(), rest,
                explained.normalChanges ? ""
                                        : " (contact.normal_update \"auto\": a failed attempt is "
@@ -447,8 +448,6 @@ void printNormalChanges(const StepReport& r, bool stepEnds, Explained& explained
                                          "normal_retries in the history; docs/CONTACT.md 1.5)");
   explained.normalChanges = true;
 }
-
-}  // namespace
 
 void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Explained& explained) {
   if (v == Verbosity::Quiet) return;

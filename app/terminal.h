@@ -29,6 +29,11 @@ struct Explained {
   bool normalChanges = false;  // contact normal_update "auto": the rules of its changes
 };
 
+// The increment's changes of how the fibre normals enter Newton (contact normal_update "auto",
+// StepReport::normalChanges), in order, and what the step's next attempts use (`stepEnds`: none
+// follow; a failed increment: none at all), as a "normals:" line; the rules once per run.
+void printNormalChanges(const StepReport& r, bool stepEnds, Explained& explained);
+
 void printIteration(const Progress& p);
 void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Explained& explained);
 

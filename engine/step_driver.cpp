@@ -33,6 +33,9 @@
 
 #include <chrono>
 #include <cmath>
+#include <regex>
+#include <string>
+#include <vector>
 
 namespace fibra {
 namespace {
@@ -122,6 +125,24 @@ NewtonSettings newtonSettings(const WorldState& w, const StepDef& st) {
   settings.lineSearch = st.lineSearch;
   settings.cycleDamping = w.scene.solver.cycleDamping;
   return settings;
+}
+
+// The failed attempts listed by noteFailure ("<what followed> at t = <t>: <why>; ..."), counted,
+// the first two and the last three in full and the count of those between.
+std::string earlierAttempts(const std::string& list) {
+  static const std::regex next("; (?=(cutback|predictor off|every fibre normal linearised|loop B's "
+                               "normals again|damping on) at t = )");
+  const std::vector<std::string> items(
+      std::sregex_token_iterator(list.begin(), list.end(), next, -1), {});
+  std::string out = counted(int(items.size()), "failed attempt") +
+                    " of the increment (what followed at t: why): ";
+  for (size_t i = 0; i < items.size(); ++i) {
+    if (items.size() > 5 && i == 2)
+      out += "... " + std::to_string(items.size() - 5) + " more ...; ";
+    if (items.size() > 5 && i >= 2 && i + 3 < items.size()) continue;
+    out += items[i] + (i + 1 < items.size() ? "; " : "");
+  }
+  return out;
 }
 
 // Appends a failed attempt to the increment's list: what followed it, at its end tTry, and why.
@@ -407,8 +428,7 @@ StepReport advance(WorldState& w) {
     rep.status = status;
     rep.message = status != StepStatus::Failed || rep.message.empty()
                       ? message
-                      : message + " (the increment's failed attempts before it, what followed "
-                                  "at t: why: " + rep.message + ")";
+                      : message + ". Before it, " + earlierAttempts(rep.message);
     rep.time = w.time;
     rep.loadFactor = (w.time - tStart) / (st.endTime - tStart);
     rep.timings.total = elapsed();

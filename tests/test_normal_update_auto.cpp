@@ -171,7 +171,7 @@ TEST_CASE("normal_update auto: no retry where no fibre normal can be linearised,
   // "with every fibre normal linearised" would repeat the failed attempt exactly. With
   // max_iterations 2 the increment fails: "auto" must fail as "loop" does, iteration for
   // iteration, and the failure's message names the attempts before the last.
-  const auto run = [](NormalUpdate mode) {
+  const auto run = [](NormalUpdate mode, int cutbacks = 2) {
     SceneDef s;
     MaterialDef m;
     m.name = "m";
@@ -204,7 +204,7 @@ TEST_CASE("normal_update auto: no retry where no fibre normal can be linearised,
     StepDef st;
     st.increments = 1;
     st.maxIterations = 2;
-    st.maxCutbacks = 2;
+    st.maxCutbacks = cutbacks;
     s.steps.push_back(st);
     World w(s);
     return w.step();
@@ -218,6 +218,11 @@ TEST_CASE("normal_update auto: no retry where no fibre normal can be linearised,
   CHECK(automatic.totalIterations == loop.totalIterations);
   CHECK(automatic.message == loop.message);
   CHECK(loop.message.find("failed after 2 cutbacks") != std::string::npos);
-  CHECK(loop.message.find("(the increment's failed attempts before it, what followed at t: why: "
-                          "cutback at t = 1: ") != std::string::npos);
+  CHECK(loop.message.find(". Before it, 2 failed attempts of the increment (what followed at t: "
+                          "why): cutback at t = 1: ") != std::string::npos);
+  // a longer list: the first two and the last three in full, the count of the others
+  const StepReport many = run(NormalUpdate::Auto, 7);
+  REQUIRE(many.status == StepStatus::Failed);
+  CHECK(many.message.find("Before it, 7 failed attempts of the increment") != std::string::npos);
+  CHECK(many.message.find("... 2 more ...; ") != std::string::npos);
 }
