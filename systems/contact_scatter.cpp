@@ -68,28 +68,21 @@ void addForceDerivative(const ParticleWeights rows[2], const NormalJacobian::Blo
 }
 
 // The facing points' motion with N: the rows of side s's directors g_f (f = 1, 2) carry
-// sign_s N_a xi_f f_N, so K += -sign_s N_a f_N (d xi_f/dv) V there.
+// sign_s N_a xi_f f_N (f_N on I), so K += -sign_s N_a f_N (d xi_f/dv) V there: a force
+// derivative f_N (d xi_f/dv) on the weights N_a of g_f alone, one side at a time.
 void addFacingMotion(const ParticleWeights material[2], const NormalJacobian& jac, const Vec3& fN,
                      const VColumn* cols, int nc, Index clique, const CliqueSlots& at,
                      LinearSystem& ls) {
-  const double sign[2] = {1, -1};
-  const Index n = kNodeDofs * at.nodes;
-  const Index* pos = &ls.positions[ls.cliqueFirst[clique]];
-  double* values = ls.K.valuePtr();
   for (int s = 0; s < 2; ++s)
-    for (int a = 0; a < material[s].nodes; ++a)
-      for (int f = 1; f <= 2; ++f) {
-        const double rw = sign[s] * material[s].c[a][0];
-        const Index i0 = kNodeDofs * (at.first[s] + a) + 3 * f;
-        for (int c = 0; c < nc; ++c)
-          for (int j = 0; j < 3; ++j) {
-            const double d = -rw * cols[c].weight * jac.dxi(2 * s + f - 1, 3 * cols[c].block + j);
-            if (d == 0) continue;
-            for (int i = 0; i < 3; ++i)
-              if (const Index p = pos[(i0 + i) * n + cols[c].local + j]; p >= 0)
-                values[p] += d * fN[i];
-          }
-      }
+    for (int f = 1; f <= 2; ++f) {
+      ParticleWeights rows[2] = {material[0], material[1]};
+      for (int side = 0; side < 2; ++side)
+        for (int a = 0; a < rows[side].nodes; ++a)
+          for (int k = 0; k < 3; ++k)
+            rows[side].c[a][k] = side == s && k == f ? material[side].c[a][0] : 0;
+      const NormalJacobian::Block block = fN * jac.dxi.row(2 * s + f - 1);
+      addForceDerivative(rows, block, cols, nc, clique, at, ls);
+    }
 }
 
 // An element on its facing particles (systems/facing_particles.h): the normal force R_N N and
