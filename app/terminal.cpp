@@ -473,8 +473,12 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
   if (contact && c.consistencyPasses > 0)
     std::fprintf(stderr,
                  "  note: %d more pass(es) with a new detection at acceptance: the fibres "
-                 "overlapped deeper than the contact elements reported (contact.max_overlap)\n",
-                 c.consistencyPasses);
+                 "overlapped deeper than the contact elements reported (contact.max_overlap)%s\n",
+                 c.consistencyPasses,
+                 c.refinedZones > 0 ? format("; %d zones carry Lobatto elements there "
+                                             "(contact.refined_zones)",
+                                             c.refinedZones).c_str()
+                                    : "");
   if (contact && c.loopCapped && !explained.loopCapped) {
     explained.loopCapped = true;
     std::fprintf(stderr,

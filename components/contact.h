@@ -46,6 +46,10 @@ struct ZoneStore {
   std::vector<double> penaltyMax;
   std::vector<double> stiffness;     // section stiffness min(E_I R_I, E_J R_J), N/mm: the scale
                                      // of the penalty's bounds (ContactParams::penaltyMin/Max)
+  std::vector<std::uint8_t> refined;  // 1: a line contact placed with Lobatto elements whatever
+                                     // `element_placement` says: the acceptance found the fibres
+                                     // overlapping between its elements (engine/contact_loops.cpp);
+                                     // carried from the `previous` zone
 
   // --- per store ---
   std::uint64_t nextId = 1;          // next fresh zone id (ids below it were handed out)

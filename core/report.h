@@ -86,6 +86,9 @@ struct ContactReport {
   double redetectParticleShift = 0; // max particle shift (arc length and section) / R, same
   // detection, in the last attempt
   int consistencyPasses = 0;   // passes added at acceptance because the set was inconsistent
+  int refinedZones = 0;        // zones of the accepted set with Lobatto elements because an
+                               // acceptance found the fibres overlapping between their elements
+                               // (ZoneStore::refined; carried from increment to increment)
   int detections = 0;          // detection passes (loop A passes of every attempt)
   int broadphaseRebuilds = 0;  // of them, those that rebuilt the broadphase's candidate set
   int candidatePairs = 0;      // candidate element pairs of the last detection

@@ -39,10 +39,11 @@ namespace fibra {
 namespace {
 
 constexpr char kMagic[] = "fibra-checkpoint\n";
-constexpr std::uint32_t kFormat = 7;  // 3: the friction blocks on facing particles; 4: the forced
+constexpr std::uint32_t kFormat = 8;  // 3: the friction blocks on facing particles; 4: the forced
                                       // signs; 5: the steps of "auto"'s linearised normals; 6: the
                                       // step whose damping_from "failure" continuation is on; 7:
-                                      // the step where a kept linearised attempt failed
+                                      // the step where a kept linearised attempt failed; 8: the
+                                      // zones refined to Lobatto elements
 
 template <class T>
 struct IsArray : std::false_type {};

@@ -65,14 +65,33 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
   return nr;
 }
 
+// The accepted set misses the true contact when the fibres overlap by more than 1.5 x the
+// deepest penetration its elements report (and p_max), both as multiples of each element's own
+// p_max (pairs of contact classes may have their own): the elements' sections are no longer
+// the closest ones (they drifted as the fibres slid or turned), or the fibres overlap between
+// the elements (the Gauss points see neither a node nor a dip between them).
+double overlapLimit(const ContactReport& r) { return 1.5 * std::max(1.0, r.maxPenetrationRatio); }
+bool inconsistent(const ContactReport& r) { return r.maxOverlapRatio > overlapLimit(r); }
+
 // The contact set the accepted state was solved with, against a detection from that state (the
 // stores are put back afterwards; the detection cache holds nothing results depend on): the true
 // overlap of the fibres and how far the set is from the one a new pass would use. A cancel
 // during it leaves the figures partial: the caller drops the attempt (acceptContactSet).
-void checkContactSet(WorldState& w, double t, ContactReport& report) {
+// `overlapped` receives the used set's zones that the fresh zones overlapping beyond the limit
+// come from (their `previous`; a fresh zone without one is new to the set).
+void checkContactSet(WorldState& w, double t, ContactReport& report,
+                     std::vector<Index>& overlapped) {
   ContactState used = w.trial;
   runStage(w, w.pipeline.detect, t);
-  const Overlap o = trueOverlap(w.fibres, w.fibres.q, w.cache.centrelines, w.trial, w.contact);
+  std::vector<double> ratios;
+  const Overlap o =
+      trueOverlap(w.fibres, w.fibres.q, w.cache.centrelines, w.trial, w.contact, &ratios);
+  overlapped.clear();
+  const ContactElementStore& fresh = w.trial.elements;
+  for (Index e = 0; e < fresh.size(); ++e)
+    if (const Index z = w.trial.zones.previous[fresh.zone[e]];
+        z >= 0 && ratios[std::size_t(e)] > overlapLimit(report))
+      overlapped.push_back(z);
   report.maxOverlap = o.depth;
   report.maxOverlapRatio = o.ratio;
   report.overlapFibreI = int(o.fibreI), report.overlapFibreJ = int(o.fibreJ);
@@ -148,25 +167,29 @@ std::string overlapPlace(const FibreStore& fs, const ContactReport& r) {
          fs.name[r.overlapFibreJ] + "' at s = " + number(r.overlapSJ) + " mm";
 }
 
-// The accepted set misses the true contact when the fibres overlap by more than 1.5 x the
-// deepest penetration its elements report (and p_max), both as multiples of each element's own
-// p_max (pairs of contact classes may have their own): the elements' sections are no longer
-// the closest ones (they drifted as the fibres slid or turned).
-bool inconsistent(const ContactReport& r) {
-  return r.maxOverlapRatio > 1.5 * std::max(1.0, r.maxPenetrationRatio);
+// The zones of `overlapped` take Lobatto elements from the next detection on (ZoneStore::
+// refined, carried by zone identity to later detections and increments): a drifted set is
+// re-placed by any new detection, but one whose fibres overlap between its Gauss points (at a
+// node, where a centreline may kink, or at a dip) would be placed the same again. None where
+// the scene's placement is Lobatto already.
+void refineZones(const ContactParams& p, ZoneStore& zones, const std::vector<Index>& overlapped) {
+  if (p.placement == ElementPlacement::Lobatto) return;
+  for (const Index z : overlapped) zones.refined[z] = 1;
 }
 
 // Acceptance (fibre-fibre contact): the set is checked against a detection from the converged
 // state (checkContactSet; a cancel during it cancels the attempt); while it is inconsistent, up
-// to kConsistencyPasses more passes solve with the new detection's elements; still
-// inconsistent, the attempt fails (a cutback), never a silent acceptance.
+// to kConsistencyPasses more passes solve with the new detection's elements, the zones that
+// overlapped refined (refineZones); still inconsistent, the attempt fails (a cutback), never a
+// silent acceptance.
 constexpr int kConsistencyPasses = 2;
 NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
                               const NewtonCallbacks& callbacks, StepTimings& timings,
                               ContactReport& report, NormalMixer& mixer, NewtonResult nr) {
   const bool linearised = w.contact.unstableNormals;
+  std::vector<Index> overlapped;
   for (int extra = 0;; ++extra) {
-    checkContactSet(w, tTry, report);
+    checkContactSet(w, tTry, report, overlapped);
     // A check cut short by a cancel checked nothing: the attempt is not accepted unchecked
     // (nor with partial figures in its report).
     if (w.cancel()) return cancelled(nr);
@@ -182,6 +205,7 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
                    std::to_string(kConsistencyPasses) + " passes with a new detection";
       return nr;
     }
+    refineZones(w.contact, w.trial.zones, overlapped);
     if (!detect(w, tTry, report)) return cancelled(nr);
     ++report.consistencyPasses;
     nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);

@@ -96,7 +96,8 @@ HistoryColumns contactColumns(const World& world) {
            "contact.candidate_pairs", "contact.loop_a_capped", "contact.max_overlap",
            "contact.redetect_zone_changes", "contact.redetect_gap_change",
            "contact.redetect_particle_shift", "contact.consistency_passes",
-           "contact.friction_held", "contact.friction_excess", "contact.normal_mixes"},
+           "contact.friction_held", "contact.friction_excess", "contact.normal_mixes",
+           "contact.refined_zones"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             const ContactReport& c = r.contact;
             row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
@@ -108,7 +109,8 @@ HistoryColumns contactColumns(const World& world) {
                                    c.maxOverlap, double(c.redetectZoneChanges),
                                    c.redetectGapChange, c.redetectParticleShift,
                                    double(c.consistencyPasses), double(c.frictionHeld),
-                                   c.frictionExcess, double(c.normalMixes)});
+                                   c.frictionExcess, double(c.normalMixes),
+                                   double(c.refinedZones)});
           }};
 }
 

@@ -290,9 +290,9 @@ void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) 
 // The zone's element count: the abscissas of forEachElementAbscissa, or a point zone's dips (its
 // touching minima, zoneMinima) when it has any; `dips` receives them (empty otherwise).
 Index zoneElementCount(const Intermediate& g, double L, const ContactParams& p,
-                       std::vector<ElementSides>& dips) {
+                       ElementPlacement placement, std::vector<ElementSides>& dips) {
   Index count = 0;
-  forEachElementAbscissa(g, L, p, [&](double, double) { ++count; });
+  forEachElementAbscissa(g, L, p, placement, [&](double, double) { ++count; });
   dips.clear();
   if (count != 1) return count;
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
@@ -310,9 +310,10 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   const double sep = g.I == g.J ? p.selfSeparation[g.I] : 0;
   const double gain = 0.1 * pairPMax(p, g.I, g.J);
   const double L = zones.intermediateLength[z];
+  const ElementPlacement placement = zonePlacement(p, zones, z);
   double total = 0;
   Index e = first;
-  forEachElementAbscissa(g, L, p, [&](double zeta, double length) {
+  forEachElementAbscissa(g, L, p, placement, [&](double zeta, double length) {
     el.zeta[e] = zeta;
     el.length[e++] = length;
     total += length;
@@ -338,7 +339,7 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   for (e = first; e < first + nc; ++e)
     if (!dips.empty()) all[e - first] = dips[e - first];
     else if (!atCrossing[e - first]) all[e - first] = sectionsAt(g, el.zeta[e], windows, sep, gain);
-  if (nc > 1 && dips.empty() && p.placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
+  if (nc > 1 && dips.empty() && placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
   for (e = first; e < first + nc; ++e) {
     ElementSides sides = all[e - first];
     const bool closest =
@@ -396,7 +397,8 @@ void generateContactElements(const FibreStore& fs, const Eigen::VectorXd& q,
       const Intermediate g = geometry(z);
       const double L = intermediateLength(g);
       zones.intermediateLength[z] = L;
-      zones.elementCount[z] = zoneElementCount(g, L, params, dips[std::size_t(z)]);
+      zones.elementCount[z] =
+          zoneElementCount(g, L, params, zonePlacement(params, zones, z), dips[std::size_t(z)]);
     }
   });
   Index total = 0;

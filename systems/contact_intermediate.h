@@ -71,6 +71,12 @@ double intermediateLength(const Intermediate& g);
 // the guess itself when F keeps its sign.
 double sectionAbscissa(const Intermediate& g, Index f, double s, double guess, double window);
 
+// The placement of zone z's line elements: Lobatto where the acceptance refined the zone
+// (ZoneStore::refined), the scene's `element_placement` elsewhere.
+inline ElementPlacement zonePlacement(const ContactParams& p, const ZoneStore& zones, Index z) {
+  return zones.refined[z] ? ElementPlacement::Lobatto : p.placement;
+}
+
 // Lobatto sampling: the missed dip of the gap g(zeta) = |D| - R_I - R_J, D = x_I - x_J, between
 // samples dz apart is at most K dz^2 / 8 for K >= |g''| on the piece. With K estimated below,
 // it is kept within kSagShare p_max (the tools' rule, systems/tool_detection.h) by cutting the
@@ -108,9 +114,11 @@ int simpsonParts(const Intermediate& g, double a, double b, double sag);
 //            within h_min / 10 of a kept cut, whose cut was dropped, within that distance).
 // Paper: eq. 7, Nc equally spaced elements zeta_k = (k - 1) / (Nc - 1), each of length L_int / Nc
 // (equal weights).
+// `placement`: the zone's (zonePlacement: the scene's `element_placement`, Lobatto for a zone
+// the acceptance refined).
 template <class Visit>
-void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams& p, Visit visit) {
-  const ElementPlacement placement = p.placement;
+void forEachElementAbscissa(const Intermediate& g, double L, const ContactParams& p,
+                           ElementPlacement placement, Visit visit) {
   const double hI = elementLength(g.fs, g.I), hJ = elementLength(g.fs, g.J);
   const double h = std::min(hI, hJ);
   const double count = std::floor(2 * L / h);

@@ -45,6 +45,7 @@ double deepestDetected(const ContactState& s) {
 
 void fillContactReport(const ContactParams& p, const ContactState& s, ContactReport& r) {
   r.zones = s.zones.size();
+  r.refinedZones = Index(std::count(s.zones.refined.begin(), s.zones.refined.end(), 1));
   r.elements = s.elements.size();
   r.toolElements = s.toolElements.size();
   r.active = r.sliding = 0;
@@ -146,9 +147,11 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
 }  // namespace
 
 Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
-                    const ContactState& detected, const ContactParams& params) {
+                    const ContactState& detected, const ContactParams& params,
+                    std::vector<double>* ratios) {
   const ContactElementStore& el = detected.elements;
   Overlap deepest;
+  if (ratios) ratios->assign(std::size_t(el.size()), 0.0);
   for (Index e = 0; e < el.size(); ++e) {
     const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
     double depth, sI = el.sI[e], sJ = el.sJ[e];
@@ -164,6 +167,7 @@ Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centre
     }
     deepest.depth = std::max(deepest.depth, depth);
     const double ratio = depth / detected.zones.pMax[el.zone[e]];
+    if (ratios) (*ratios)[std::size_t(e)] = ratio;
     if (ratio > deepest.ratio) {
       deepest.ratio = ratio;
       deepest.fibreI = fI, deepest.fibreJ = fJ;

@@ -13,7 +13,8 @@
 //                     soft for the load: the element sat at -allowed and every step had a = 0.)
 // deepestDetected     the largest penetration of the elements at their detection (or last
 //                     normal update), as a multiple of their zone's p_max.
-// fillContactReport   counts (zones, elements, active, sliding) and the largest penetration.
+// fillContactReport   counts (zones, elements, active, sliding, refined zones) and the largest
+//                     penetration.
 // trueOverlap         over the elements of a detection from the state q: the fibres' overlap near
 //                     each element's sections, measured from the centrelines and the deformed
 //                     directors, not from the element's particles or normal. The sections are
@@ -45,6 +46,7 @@
 //                     they may under-report. A forced element's depth is at its own sections,
 //                     less the overlap its step still allows (ContactParams::forcedAllowance),
 //                     as its gap is. `centrelines`: the state q's (computed by the detection).
+//                     `ratios` (optional): receives each element's overlap / its zone's p_max.
 // compareContactSets  a detection from the accepted state (`fresh`) against the set the state
 //                     was solved with (`used`): zones paired by id; zones without a partner or
 //                     with another element count are counted; elements of paired zones paired
@@ -72,6 +74,7 @@
 #include "systems/interpolation.h"
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace fibra {
 
@@ -87,7 +90,8 @@ double stepLimit(const ContactParams& params, const ContactState& state, const E
 
 double deepestDetected(const ContactState& state);
 
-// Fills zones, elements, toolElements, active, sliding, maxPenetration, maxPenetrationRatio.
+// Fills zones, elements, toolElements, active, sliding, maxPenetration, maxPenetrationRatio,
+// refinedZones.
 void fillContactReport(const ContactParams& params, const ContactState& state, ContactReport& r);
 
 // Half-width of a fibre along a unit direction n normal to its centreline at section S: R |G^T n|,
@@ -106,7 +110,7 @@ struct Overlap {
 };
 Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
                     const CentrelineStore& centrelines, const ContactState& detected,
-                    const ContactParams& params);
+                    const ContactParams& params, std::vector<double>* ratios = nullptr);
 
 // Tool `tool`'s deepest overlap with the fibres of state q at pseudo-time t (mm; 0 and element -1
 // when none overlaps it), and where: the element and its parameter z in [-1, 1].

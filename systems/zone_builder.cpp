@@ -201,6 +201,7 @@ void writeZones(const ZoneCache& cache, ZoneStore& z) {
       z.firstElement[at] = z.elementCount[at] = 0;
       z.penalty[at] = z.pMax[at] = z.friction[at] = z.stiffness[at] = 0;
       z.penaltyMin[at] = z.penaltyMax[at] = 0;
+      z.refined[at] = 0;
       ++at;
     }
   });

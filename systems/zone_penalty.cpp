@@ -15,6 +15,7 @@ void carryZonePenalties(const FibreStore& fs, const MaterialStore& materials,
     z.stiffness[i] = std::min(ER(z.fibreI[i]), ER(z.fibreJ[i]));
     const double k0 = std::isfinite(p.initialPenalty) ? p.initialPenalty : z.stiffness[i];
     z.penalty[i] = o >= 0 ? previous.penalty[o] : k0;
+    z.refined[i] = o >= 0 ? previous.refined[o] : 0;
     const int c = pairClass(p, z.fibreI[i], z.fibreJ[i]);
     z.pMax[i] = p.pairs.pMax[c];
     z.friction[i] = p.pairs.mu[c];
