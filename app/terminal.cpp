@@ -43,7 +43,8 @@ std::string lawLine(const ContactParams& c) {
                            initial.c_str(), c.penaltyChange, c.pRegRatio, c.stepPenetration, c.gMax,
                            c.symmetrised ? "symmetrised" : "consistent");
   if (c.fibres) out += format(", element placement %s, normals %s",
-                              c.placement == ElementPlacement::Weighted  ? "weighted"
+                              c.placement == ElementPlacement::Weighted
+                                  ? "weighted (Lobatto in the zones the acceptance refines)"
                               : c.placement == ElementPlacement::Lobatto ? "lobatto"
                                                                          : "paper",
                               c.newtonNormals && !c.newtonFrictionlessOnly ? "linearised in Newton"
@@ -475,10 +476,12 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
                  "  note: %d more pass(es) with a new detection at acceptance: the fibres "
                  "overlapped deeper than the contact elements reported (contact.max_overlap)%s\n",
                  c.consistencyPasses,
-                 c.refinedZones > 0 ? format("; %d zones carry Lobatto elements there "
-                                             "(contact.refined_zones)",
-                                             c.refinedZones).c_str()
-                                    : "");
+                 c.newlyRefinedZones > 0
+                     ? ("; " + counted(c.newlyRefinedZones, "zone") +
+                        " where they overlapped between the elements now carry Lobatto elements "
+                        "(contact.refined_zones)")
+                           .c_str()
+                     : "");
   if (contact && c.loopCapped && !explained.loopCapped) {
     explained.loopCapped = true;
     std::fprintf(stderr,

@@ -77,8 +77,11 @@ bool inconsistent(const ContactReport& r) { return r.maxOverlapRatio > overlapLi
 // stores are put back afterwards; the detection cache holds nothing results depend on): the true
 // overlap of the fibres and how far the set is from the one a new pass would use. A cancel
 // during it leaves the figures partial: the caller drops the attempt (acceptContactSet).
-// `overlapped` receives the used set's zones that the fresh zones overlapping beyond the limit
-// come from (their `previous`; a fresh zone without one is new to the set).
+// `overlapped` receives the used set's zones that the fresh zones with an element whose true
+// overlap exceeds the limit come from (their `previous`; a fresh zone without one is new to the
+// set). (Asking also that the fresh element's own gap at detection miss the overlap, to leave
+// zones that merely drifted alone, refined none on the twisted bundle of
+// tests/test_contact_sampling.cpp, which then failed as before; not looked into further.)
 void checkContactSet(WorldState& w, double t, ContactReport& report,
                      std::vector<Index>& overlapped) {
   ContactState used = w.trial;
@@ -170,11 +173,15 @@ std::string overlapPlace(const FibreStore& fs, const ContactReport& r) {
 // The zones of `overlapped` take Lobatto elements from the next detection on (ZoneStore::
 // refined, carried by zone identity to later detections and increments): a drifted set is
 // re-placed by any new detection, but one whose fibres overlap between its Gauss points (at a
-// node, where a centreline may kink, or at a dip) would be placed the same again. None where
-// the scene's placement is Lobatto already.
-void refineZones(const ContactParams& p, ZoneStore& zones, const std::vector<Index>& overlapped) {
-  if (p.placement == ElementPlacement::Lobatto) return;
-  for (const Index z : overlapped) zones.refined[z] = 1;
+// node, where a centreline may kink, or at a dip) would be placed the same again. A zone that
+// only drifted is refined as well: more elements where an overlap was found. Only under
+// the default Gauss placement ("lobatto" has them already; "paper" reproduces eq. 7 as it is).
+// Returns how many zones were newly refined.
+int refineZones(const ContactParams& p, ZoneStore& zones, const std::vector<Index>& overlapped) {
+  if (p.placement != ElementPlacement::Weighted) return 0;
+  int refined = 0;
+  for (const Index z : overlapped) refined += !zones.refined[z], zones.refined[z] = 1;
+  return refined;
 }
 
 // Acceptance (fibre-fibre contact): the set is checked against a detection from the converged
@@ -205,7 +212,7 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
                    std::to_string(kConsistencyPasses) + " passes with a new detection";
       return nr;
     }
-    refineZones(w.contact, w.trial.zones, overlapped);
+    report.newlyRefinedZones += refineZones(w.contact, w.trial.zones, overlapped);
     if (!detect(w, tTry, report)) return cancelled(nr);
     ++report.consistencyPasses;
     nr = normalLoop(w, tTry, settings, callbacks, timings, report, mixer, nr);

@@ -57,7 +57,8 @@ HistoryColumns toolColumns(const World& world);
 // .detections, .broadphase_rebuilds (detection passes of the increment's last attempt, and those
 // that rebuilt the broadphase's candidate set), .candidate_pairs (of the last detection), ...,
 // .normal_mixes (normal updates of loop B replaced by the Anderson-mixed normals, summed over
-// loop A; contact `normal_acceleration`).
+// loop A; contact `normal_acceleration`), .refined_zones (zones of the accepted set with
+// Lobatto elements by the acceptance's refinement, ZoneStore::refined).
 HistoryColumns contactColumns(const World& world);
 // When some step has damping: viscous_force, |the continuation's force on the free DOFs| / F_ref
 // at the end of the increment (how far the state is from static equilibrium; 0 in steps

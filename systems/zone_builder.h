@@ -3,8 +3,8 @@
 // Reads  FibreStore, ContactParams, CentrelineStore and the broadphase candidate pairs, the
 //        cancel flag (per fibre chunk).
 // Writes ZoneStore (fibres, intervals, minimum distance, test-point count; id, previous, the
-//        penalties and the element fields are left for zone identity, systems/zone_penalty.h
-//        and the element generator), ZoneCache scratch.
+//        penalties, `refined` (0 here) and the element fields are left for zone identity,
+//        systems/zone_penalty.h and the element generator), ZoneCache scratch.
 // Threading: parallel over fixed chunks of fibres I; each chunk writes its own zone list, the
 //        lists are concatenated in chunk order: zones come out sorted by (I, J, sI1) whatever
 //        the thread count.

@@ -6,8 +6,8 @@
 //
 // Reads  FibreStore (radii, materials), MaterialStore (E), ContactParams (initial k, the pair
 //        classes), the previous call's ZoneStore (penalty, refined), the new zones' `previous`.
-// Writes the new ZoneStore's penalty, refined, pMax, friction, penalty bounds and stiffness
-//        columns.
+// Writes the new ZoneStore's penalty, refined, pMax, friction, penalty bounds and
+//        stiffness columns.
 //   k_z = k_previous(z) when the zone matches a previous one (its own id continued, or a part
 //         split off it: systems/zone_identity.h), else k0 = min(E_I R_I, E_J R_J) (or the
 //         scene's initial penalty); refined_z = refined_previous(z), else 0; p_max,z, mu_z and the penalty bounds = those of the pair

@@ -173,7 +173,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
        {"  contact: fibre-fibre, p_max 0.0005 mm, mu 0, theta_cross 20 deg, ",
         "  contact law: penalty 1 .. 10000 x E R, initial penalty E R, change <= x10, p_reg 0.5 "
         "p_max, step limit 10 p_max, g_T,max 0.0005 mm, friction tangent consistent, element "
-        "placement weighted, normals "
+        "placement weighted (Lobatto in the zones the acceptance refines), normals "
         "updated by loop B (Anderson memory 3 when unstable), frictionless parallel normals "
         "linearised in Newton once loop B diverges, every fibre normal linearised after a failed "
         "attempt (retried) or a slow loop B (kept while it converges; a failed linearised attempt "

@@ -137,7 +137,8 @@ double deepestOverlap(const FibreStore& fs, const Eigen::VectorXd& q, Index I, I
 TEST_CASE("the acceptance refines the zones whose fibres overlap between their Gauss elements") {
   // A 19-fibre bundle of 4 elements per fibre (h = 1 mm), twisted a quarter turn under tension,
   // mu = 0.1, p_max = 1e-4 mm (bench/contact_scenes.h): by t = 1.9 neighbour fibres overlap by
-  // 3.5 p_max at a node (s = 0.93 mm) where the Gauss elements, 0.21 h away, report 1.0. A new
+  // 3.5 p_max near a node (s = 0.93 mm, the node at 1.0) where the Gauss elements, 0.21 h from
+  // it, report 1.0. A new
   // detection places the same elements, so before the refinement every attempt of that
   // increment failed as an inconsistent set and the run stopped at t = 1.876. The zones that
   // overlap take Lobatto elements (an element at the node) and keep them.
