@@ -35,9 +35,9 @@
 // is solved again with the new detection's elements, at most twice, and the attempt fails (a
 // cutback) if it still is: an inconsistent set is never accepted (ContactReport::
 // consistencyPasses counts the passes added). Under the default Gauss placement, the zones
-// where the overlap was found take Lobatto elements from that new detection on (ZoneStore::refined, carried by zone identity; ContactReport::refinedZones): a
-// set whose fibres overlap between its Gauss points, at a node, would otherwise be placed the
-// same again.
+// where the overlap was found take Lobatto elements from that new detection on
+// (ZoneStore::refined, carried by zone identity; ContactReport::refinedZones): a set whose
+// fibres overlap between its Gauss points, at a node, would otherwise be placed the same again.
 // Newton's steps are limited so that no element closes deeper than stepPenetration p_max in one
 // step (systems/contact_queries.h): without it the first step of an increment that brings fibres
 // into contact overshoots by millimetres and Newton then cycles between contact states.

@@ -32,8 +32,8 @@
 //     h_min / 10 of another cut, then carries an element. A section within 1e-3 h of an
 //     interior node takes the element its neighbour in zeta pairs with the other fibre's (1e-7 h
 //     inside it), so no new pair of beam elements is coupled. Paper: eq. 7 (equal spacing and
-//     weights). A zone the acceptance refined (ZoneStore::refined) takes the Lobatto elements
-//     whatever the scene's placement.
+//     weights). A zone the acceptance refined (ZoneStore::refined, under "weighted" only) takes
+//     the Lobatto elements.
 //   sections: (x(s) - x_int(zeta_k)) . t_int(zeta_k) = 0 on I and on J                   (eq. 8)
 //     by Newton from sI(zeta_k) (resp. sJ) within the zone interval widened by Delta_prox
 //     (clamped to the fibre), bisection as safeguard; then, where both cuts are well posed,
