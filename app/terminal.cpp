@@ -474,14 +474,13 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
   if (contact && c.consistencyPasses > 0)
     std::fprintf(stderr,
                  "  note: %d more pass(es) with a new detection at acceptance: the fibres "
-                 "overlapped deeper than the contact elements reported (contact.max_overlap)%s\n",
-                 c.consistencyPasses,
-                 c.newlyRefinedZones > 0
-                     ? ("; " + counted(c.newlyRefinedZones, "zone") +
-                        " where they overlapped between the elements now carry Lobatto elements "
-                        "(contact.refined_zones)")
-                           .c_str()
-                     : "");
+                 "overlapped deeper than the contact elements reported (contact.max_overlap)\n",
+                 c.consistencyPasses);
+  if (contact && c.newlyRefinedZones > 0)
+    std::fprintf(stderr,
+                 "  note: %s where the fibres overlapped between the contact elements now "
+                 "carry Lobatto elements (contact.refined_zones)\n",
+                 counted(c.newlyRefinedZones, "zone").c_str());
   if (contact && c.loopCapped && !explained.loopCapped) {
     explained.loopCapped = true;
     std::fprintf(stderr,
@@ -518,10 +517,10 @@ void printIncrement(const StepReport& r, const SceneDef& scene, Verbosity v, Exp
   std::fprintf(stderr, "%s\n", linear.c_str());
   if (!contact) return;
   std::fprintf(stderr,
-               "  contact: %d zones, %d + %d tool elements (%d active, %d sliding), max "
-               "penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts; detection: %d "
-               "passes, %d broadphase rebuilds, %d candidate pairs\n",
-               c.zones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
+               "  contact: %d zones (%d refined), %d + %d tool elements (%d active, %d sliding), "
+               "max penetration %.3g mm (%.2f p_max), loops A %d B %d, %d restarts; detection: "
+               "%d passes, %d broadphase rebuilds, %d candidate pairs\n",
+               c.zones, c.refinedZones, c.elements, c.toolElements, c.active, c.sliding, c.maxPenetration,
                c.maxPenetrationRatio, c.detectionLoops, c.normalLoops, c.restarts, c.detections,
                c.broadphaseRebuilds, c.candidatePairs);
   if (scene.contact.enabled)

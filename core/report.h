@@ -89,7 +89,8 @@ struct ContactReport {
   int refinedZones = 0;        // zones of the accepted set with Lobatto elements because an
                                // acceptance found the fibres overlapping between their elements
                                // (ZoneStore::refined; carried from increment to increment)
-  int newlyRefinedZones = 0;   // of them, refined by this attempt's acceptance
+  int newlyRefinedZones = 0;   // of them, refined by the acceptance of this attempt (in a
+                               // StepReport: of the increment's converged attempts)
   int detections = 0;          // detection passes (loop A passes of every attempt)
   int broadphaseRebuilds = 0;  // of them, those that rebuilt the broadphase's candidate set
   int candidatePairs = 0;      // candidate element pairs of the last detection

@@ -209,7 +209,11 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
                    number(report.maxOverlap) + " mm) where the elements report at most " +
                    number(report.maxPenetrationRatio) + " p_max (" +
                    number(report.maxPenetration) + " mm), after " +
-                   std::to_string(kConsistencyPasses) + " passes with a new detection";
+                   std::to_string(kConsistencyPasses) + " passes with a new detection" +
+                   (w.contact.placement == ElementPlacement::Paper
+                        ? " (contact element_placement \"paper\" is never refined; \"weighted\" "
+                          "refines the zones where the fibres overlap between elements)"
+                        : "");
       return nr;
     }
     report.newlyRefinedZones += refineZones(w.contact, w.trial.zones, overlapped);
@@ -289,7 +293,8 @@ NewtonResult solveContactIncrement(WorldState& w, double tTry, const NewtonSetti
   // tangent non-symmetric (a new pattern at the detection), so that Newton seeks the
   // equilibrium the fixed point could not hold; the iterations spent so far stay counted.
   w.fibres.q = qEntry;
-  w.trial = w.committed;
+  w.trial = w.committed;  // the refinements of the passes before are dropped with it
+  report.newlyRefinedZones = 0;
   setSymmetric(w, symmetricTangent(w));
   ++report.restarts;
   ++report.normalRestarts;

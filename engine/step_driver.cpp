@@ -442,6 +442,7 @@ StepReport advance(WorldState& w) {
   bool retried = false;  // a predicted attempt failed: the increment goes on without the predictor
   bool escalating = false;  // the attempt retries a failed one with every fibre normal linearised
   NewtonResult beforeRetry;  // the failed attempt that the retry repeats
+  int refined = 0;  // zones refined by the acceptance of the increment's converged attempts
   while (w.time < t1) {
     const double tTry = w.time + w.dt >= t1 - 1e-9 * nominal ? t1 : w.time + w.dt;
     if (!(tTry - w.time > 1e-12 * std::max(std::abs(t1), nominal)))
@@ -459,6 +460,8 @@ StepReport advance(WorldState& w) {
       const double size = tTry - w.time;
       rep.smallestIncrement = rep.subIncrements++ ? std::min(rep.smallestIncrement, size) : size;
       rep.predicted += w.predict;
+      refined += rep.contact.newlyRefinedZones;
+      rep.contact.newlyRefinedZones = refined;
       commit(w, tTry);
       const bool stepGoesOn = tTry < t1 || w.increment + 1 < st.increments;
       const bool slow = slowNormalLoop(w, st, nr, rep.contact, stepGoesOn);

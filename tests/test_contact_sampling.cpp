@@ -151,6 +151,8 @@ TEST_CASE("the acceptance refines the zones whose fibres overlap between their G
   while (!w.finished()) {
     r = w.step();
     REQUIRE_MESSAGE(r.status == StepStatus::Converged, r.message);
+    // The increment where zones are first refined says so (summed over its converged attempts).
+    if (refined == 0 && r.contact.refinedZones > 0) CHECK(r.contact.newlyRefinedZones > 0);
     if (refined == 0 && r.contact.refinedZones > 0 && !w.finished()) w.saveCheckpoint(checkpoint);
     refined = std::max(refined, r.contact.refinedZones);
     zones = r.contact.zones;
