@@ -57,6 +57,7 @@
 #include "components/contact.h"
 #include "components/iteration.h"
 #include "core/trace.h"
+#include "systems/contact_geometry.h"
 #include "systems/contact_params.h"
 #include "systems/interpolation.h"
 
@@ -72,14 +73,59 @@ namespace fibra {
 // infinite (no end to pass) beyond: the tangent lines stand for the fibres only near their
 // sections (with every end, a plectoneme's ply 0.05 mm from its clamped end took the closest
 // points of segments reaching 6.8 mm along a tangent line, 50 p_max of overlap where none was).
+// A kink ends the room as an end does: a node within reach where the current tangents of the two
+// elements that meet there differ by more than `kinkAngle` (rad; the callers pass theta_parallel),
+// the room then running from the section to that node. Past a kink the tangent line no longer
+// stands for the fibre: a V-shaped fibre resting on a straight one by its vertex had the common
+// normal of one arm's tangent line and the straight fibre's axis, which meet in their plane far
+// from the vertex (N 33 degrees off the plane, 0.15 p_max of penetration reported and 9 mN
+// pushing where the fibres stood 28 p_max apart; tests/test_contact_normals.cpp).
 constexpr double kEndReach = 2;
+
 struct EndRoom {
   double I0 = HUGE_VAL, I1 = HUGE_VAL, J0 = HUGE_VAL, J1 = HUGE_VAL;
 };
-inline EndRoom endRoom(const FibreStore& fs, Index fI, double sI, Index fJ, double sJ) {
+
+// Visits the kinks of fibre f's current centreline (q) at the interior nodes with reference arc
+// length in [lo, hi] (mm): visit(k, s_k), k the node's element end (1 .. n - 1), s_k = k h.
+template <class Visit>
+void forEachKink(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double lo, double hi,
+                 double kinkAngle, Visit&& visit) {
+  const double h = elementLength(fs, f);
+  const Index first = fs.firstElement[f], n = fs.elementCount[f];
+  const Index kLo = std::max<Index>(1, Index(std::ceil(lo / h)));
+  const Index kHi = std::min<Index>(n - 1, Index(std::floor(hi / h)));
+  for (Index k = kLo; k <= kHi; ++k) {
+    const Vec3 a = sectionAt(fs, q, {first + k - 1, 1.0}).dx0ds;
+    const Vec3 b = sectionAt(fs, q, {first + k, -1.0}).dx0ds;
+    if (std::atan2(a.cross(b).norm(), a.dot(b)) > kinkAngle) visit(k, k * h);
+  }
+}
+
+// The arc length (mm) from the section at s of fibre f to the nearest kink before it (`before`)
+// and after it (`after`) within `reach` of s, kinks as above; unchanged where there is none. A
+// kink at the node where the section's own element starts lies before it; a section at a kinked
+// node itself (interiorNodeAt: its tangent the mean of the two, contactSection) has no room on
+// either side, so that n_cross runs from the vertex to the other fibre's segment.
+inline void kinkRoom(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s,
+                     double reach, double kinkAngle, double& before, double& after) {
+  const Index own = locate(fs, f, s).element - fs.firstElement[f];  // the section's element
+  const Index atNode = interiorNodeAt(fs, f, s);
+  forEachKink(fs, q, f, s - reach, s + reach, kinkAngle, [&](Index k, double sk) {
+    if (k == atNode) before = after = 0;
+    else if (k <= own) before = std::min(before, std::max(0.0, s - sk));
+    else after = std::min(after, std::max(0.0, sk - s));
+  });
+}
+
+inline EndRoom endRoom(const FibreStore& fs, const Eigen::VectorXd& q, Index fI, double sI,
+                       Index fJ, double sJ, double kinkAngle) {
   const double reach = kEndReach * (fs.radius[fI] + fs.radius[fJ]);
   const auto near = [reach](double room) { return room <= reach ? room : HUGE_VAL; };
-  return {near(sI), near(fs.length[fI] - sI), near(sJ), near(fs.length[fJ] - sJ)};
+  EndRoom r{near(sI), near(fs.length[fI] - sI), near(sJ), near(fs.length[fJ] - sJ)};
+  kinkRoom(fs, q, fI, sI, reach, kinkAngle, r.I0, r.I1);
+  kinkRoom(fs, q, fJ, sJ, reach, kinkAngle, r.J0, r.J1);
+  return r;
 }
 
 struct NormalGap {

@@ -93,6 +93,50 @@ double faceDepth(const Section& S, double R, const Vec3& x) {
   return r > 0 ? halfWidth(S, R, radial / r) - r : halfWidth(S, R, S.g1.normalized());
 }
 
+// The point of fibre g's centreline closest to x within [lo, hi] (mm of arc length), by Newton
+// on (x_g(s) - x) . t_g(s) from s (in: the start; out: the point), clamped to the window.
+void closestOnFibre(const FibreStore& fs, const CentrelineStore& cl, Index g, const Vec3& x,
+                    double lo, double hi, double& s) {
+  for (int it = 0; it < 20; ++it) {
+    const CentrelinePoint c = centrelineAt(fs, cl, g, s);
+    const Vec3 d = c.x - x;
+    const double slope = c.dxds.dot(c.dxds) + d.dot(centrelineSecond(fs, cl, g, s));
+    if (!(slope > 0)) return;
+    const double next = std::clamp(s - d.dot(c.dxds) / slope, lo, hi);
+    const bool done = std::abs(next - s) <= 1e-10 * elementLength(fs, g);
+    s = next;
+    if (done) return;
+  }
+}
+
+// The overlap of the discs of I at sI and J at sJ (mm; tubeOverlap below says why these two
+// directions).
+double discOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& params,
+                   Index fI, double sI, Index fJ, double sJ) {
+  const Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
+  const double RI = fs.radius[fI], RJ = fs.radius[fJ];
+  // The discs' overlap along n, w_I(n) + w_J(n) - (x0I - x0J).n, bounds their true overlap from
+  // above for every unit n (their support functions): the least of two candidates. Across the
+  // mean tangent t, n = P_t d / |P_t d| (d = x0I - x0J; coincident centres: I's first director),
+  // normal to both fibres at closest points and the measure of parallel fibres whose sections lie
+  // apart along them; and eq. 10's direction (systems/contact_normals.h), which for crossing
+  // fibres is their common normal, or that of the segments they cover past an end (across the
+  // mean tangent alone, a tilted end 0.005 mm clear of a crossing fibre read 27 p_max deep).
+  const auto along = [&](const Vec3& n) {
+    return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - (I.x0 - J.x0).dot(n);
+  };
+  const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
+  const Vec3 t = (tI + (tI.dot(tJ) < 0 ? Vec3(-tJ) : tJ)).normalized();
+  Vec3 d = I.x0 - J.x0;
+  if (const Vec3 across = d - d.dot(t) * t; across.norm() > 1e-9 * (RI + RJ)) d = across;
+  const double dist = d.norm();
+  const double acrossTangent = along(dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized()));
+  const NormalOf<double> n = normalOfSections<double>(
+      I.x0, J.x0, I.dx0ds, J.dx0ds, I.x0, J.x0, I.g1, RI, RJ, params.thetaParallel,
+      params.thetaCross, 0, endRoom(fs, q, fI, sI, fJ, sJ, params.thetaParallel));
+  return std::min(acrossTangent, along(n.normal));
+}
+
 // The overlap of two fibres near the pair of sections (sI, sJ), mm: at the closest points of
 // their centrelines within one element of the pair (closestSectionsNear: a minimum of the
 // distance, or the distance still falling at a fibre's end, with the fibres not parallel;
@@ -122,26 +166,24 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
     return faceDepth(J, RJ, I.x0 + xi[0] * I.g1 + xi[1] * I.g2);
   if (seekClosest && endFaceContact(fs, q, cl, fJ, sJ, J, fI, sep, 0, sI, I, xi))
     return faceDepth(I, RI, J.x0 + xi[0] * J.g1 + xi[1] * J.g2);
-  // The discs' overlap along n, w_I(n) + w_J(n) - (x0I - x0J).n, bounds their true overlap from
-  // above for every unit n (their support functions): the least of two candidates. Across the
-  // mean tangent t, n = P_t d / |P_t d| (d = x0I - x0J; coincident centres: I's first director),
-  // normal to both fibres at closest points and the measure of parallel fibres whose sections lie
-  // apart along them; and eq. 10's direction (systems/contact_normals.h), which for crossing
-  // fibres is their common normal, or that of the segments they cover past an end (across the
-  // mean tangent alone, a tilted end 0.005 mm clear of a crossing fibre read 27 p_max deep).
-  const auto along = [&](const Vec3& n) {
-    return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - (I.x0 - J.x0).dot(n);
+  double depth = discOverlap(fs, q, params, fI, sI, fJ, sJ);
+  if (!seekClosest) return depth;
+  // A kinked node is a minimum of the centreline distance that the Newton search above, on
+  // smooth pieces, does not land on: each kink in the windows is measured against the other
+  // fibre's point closest to it.
+  const auto atKinks = [&](Index f, Index g, double lo, double hi, double glo, double ghi,
+                           bool fIsI) {
+    forEachKink(fs, q, f, lo, hi, params.thetaParallel, [&](Index, double sk) {
+      double sg = fIsI ? sJ : sI;
+      closestOnFibre(fs, cl, g, centrelineAt(fs, cl, f, sk).x, glo, ghi, sg);
+      const double a = fIsI ? sk : sg, b = fIsI ? sg : sk;
+      const double k = discOverlap(fs, q, params, fI, a, fJ, b);
+      if (k > depth) depth = k, sI = a, sJ = b;
+    });
   };
-  const Vec3 tI = I.dx0ds.normalized(), tJ = J.dx0ds.normalized();
-  const Vec3 t = (tI + (tI.dot(tJ) < 0 ? Vec3(-tJ) : tJ)).normalized();
-  Vec3 d = I.x0 - J.x0;
-  if (const Vec3 across = d - d.dot(t) * t; across.norm() > 1e-9 * (RI + RJ)) d = across;
-  const double dist = d.norm();
-  const double acrossTangent = along(dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized()));
-  const NormalOf<double> n = normalOfSections<double>(
-      I.x0, J.x0, I.dx0ds, J.dx0ds, I.x0, J.x0, I.g1, RI, RJ, params.thetaParallel,
-      params.thetaCross, 0, endRoom(fs, fI, sI, fJ, sJ));
-  return std::min(acrossTangent, along(n.normal));
+  atKinks(fI, fJ, window.aI, window.bI, window.aJ, window.bJ, true);
+  atKinks(fJ, fI, window.aJ, window.bJ, window.aI, window.bI, false);
+  return depth;
 }
 
 }  // namespace

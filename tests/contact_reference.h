@@ -397,7 +397,7 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
     // (segmentOffset, tests/contact_reference_geometry.h)
     const double w = std::clamp((e.theta - p.thetaParallel) / (p.thetaCross - p.thetaParallel), 0.0, 1.0);
     Vec3 segment = Vec3::Zero();
-    if (w > 0) e.pastEnd = segmentOffset(fs, I, e.sI, sI, J, e.sJ, sJ, segment);
+    if (w > 0) e.pastEnd = segmentOffset(fs, q, p.thetaParallel, I, e.sI, sI, J, e.sJ, sJ, segment);
     // The centre-to-centre direction without its component along the mean tangent (the
     // sections' axial offset, systems/contact_normals.h).
     const Vec3 tm = (tI + (tI.dot(tJ) < 0 ? -tJ : tJ)).normalized();

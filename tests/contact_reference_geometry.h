@@ -200,23 +200,47 @@ inline bool endFace(const FibreStore& fs, const Eigen::VectorXd& q, double sep, 
   return true;
 }
 
-// The eq. 10 crossing normal past an end: where the closest points of the tangent lines
-// x0I + lambda t_I, x0J + mu t_J lie past a fibre's end (lambda from -sI to L_I - sI, mu
-// likewise, an end farther than 2 (R_I + R_J) not counted), `offset` receives the vector between
+// The room of a section at s of fibre f towards its fibre's ends or kinks (mm), each beyond
+// 2 (R_I + R_J) not counted: a kink is an interior node where the two elements' tangents at the
+// state q differ by more than `kinkAngle` (rad); a section at such a node has none on either
+// side, else a kink counts before it when its node starts or precedes the section's element.
+inline void sectionRoom(const FibreStore& fs, const Eigen::VectorXd& q, Index f, double s,
+                        double reach, double kinkAngle, double& lo, double& hi) {
+  const auto cap = [reach](double room) { return room <= reach ? room : 1e300; };
+  double before = s, after = fs.length[f] - s;
+  const double h = fs.length[f] / double(fs.elementCount[f]);
+  const Index own = locate(fs, f, s).element - fs.firstElement[f];
+  for (Index k = 1; k < fs.elementCount[f]; ++k) {
+    const double sk = double(k) * h;
+    if (std::abs(sk - s) > reach) continue;
+    const Vec3 a = sectionAt(fs, q, {fs.firstElement[f] + k - 1, 1.0}).dx0ds.normalized();
+    const Vec3 b = sectionAt(fs, q, {fs.firstElement[f] + k, -1.0}).dx0ds.normalized();
+    if (!(std::acos(std::clamp(a.dot(b), -1.0, 1.0)) > kinkAngle)) continue;
+    if (std::abs(s / h - double(k)) <= 1e-9) before = after = 0;
+    else if (k <= own) before = std::min(before, s - sk);
+    else after = std::min(after, sk - s);
+  }
+  lo = -cap(before), hi = cap(after);
+}
+
+// The eq. 10 crossing normal past an end or a kink: where the closest points of the tangent lines
+// x0I + lambda t_I, x0J + mu t_J lie past a fibre's end or kink (lambda within the room
+// sectionRoom gives the section, mu likewise), `offset` receives the vector between
 // the closest points of the two segments, the convex quadratic |x0I - x0J + lambda t_I - mu t_J|^2
 // minimised on that box by exact coordinate steps, each clamped, until neither moves by 1e-15 mm;
 // true then, false (offset untouched) where the lines' closest points lie within both.
-inline bool segmentOffset(const FibreStore& fs, Index I, double sIs, const Section& sI, Index J,
-                          double sJs, const Section& sJ, Vec3& offset) {
+inline bool segmentOffset(const FibreStore& fs, const Eigen::VectorXd& q, double kinkAngle,
+                          Index I, double sIs, const Section& sI, Index J, double sJs,
+                          const Section& sJ, Vec3& offset) {
   const Vec3 tI = sI.dx0ds.normalized(), tJ = sJ.dx0ds.normalized();
   Eigen::Matrix<double, 3, 2> A;
   A << tI, -tJ;
   const Vec3 r = sI.x0 - sJ.x0;
   Eigen::Vector2d lm = A.colPivHouseholderQr().solve(Vec3(-r));
   const double reach = 2 * (fs.radius[I] + fs.radius[J]);
-  const auto cap = [reach](double room) { return room <= reach ? room : 1e300; };
-  const double loI = -cap(sIs), hiI = cap(fs.length[I] - sIs);
-  const double loJ = -cap(sJs), hiJ = cap(fs.length[J] - sJs);
+  double loI, hiI, loJ, hiJ;
+  sectionRoom(fs, q, I, sIs, reach, kinkAngle, loI, hiI);
+  sectionRoom(fs, q, J, sJs, reach, kinkAngle, loJ, hiJ);
   if (!(lm(0) < loI || lm(0) > hiI || lm(1) < loJ || lm(1) > hiJ)) return false;
   lm = Eigen::Vector2d(std::clamp(lm(0), loI, hiI), std::clamp(lm(1), loJ, hiJ));
   for (int it = 0; it < 100000; ++it) {

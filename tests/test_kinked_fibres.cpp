@@ -1,0 +1,94 @@
+// A fibre with a kink (a polyline's vertex at a node: the centreline only C0 there) resting by
+// its vertex on a straight fibre. Fibre A lies along x at z = 0; fibre B is a V in the same
+// plane y = 0, its arms rising with slope 0.2 from the vertex at (0, 0, zk); both R = 0.1 mm,
+// both clamped at their ends, p_max 1e-3 mm. The arms make 11.3 deg with A, between
+// theta_parallel and theta_cross, so eq. 10 blends in the crossing normal t_A x t_B, which is
+// normal to the plane; its tangent lines meet A's axis in the plane far from the vertex, past
+// the kink. The kink ends the tangent line's room as an end does (systems/contact_normals.h,
+// kinkRoom), and the acceptance measures the overlap at the kink itself (contact_queries.cpp).
+// Before: with the vertex 0.01 mm clear, N turned 33 deg out of the plane and 0.15 p_max of
+// penetration pushed the fibres apart with 9 mN per element.
+#include "engine/world.h"
+#include "engine/world_state.h"
+#include "io/scene_loader.h"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+using namespace fibra;
+
+namespace {
+
+SceneDef kinkScene(double zk) {
+  const std::string z = std::to_string(zk), arm = std::to_string(zk + 0.4);
+  return loadSceneFromString(R"({
+    "units": "mm-N-MPa",
+    "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+    "fibres": [
+      {"name": "A", "material": "m", "radius": 0.1, "elements": 10,
+       "geometry": {"type": "line", "points": [[-2, 0, 0], [2, 0, 0]], "director": [0, 0, 1]}},
+      {"name": "B", "material": "m", "radius": 0.1, "elements": 10,
+       "geometry": {"type": "polyline", "points": [[-2, 0, )" + arm + R"(], [0, 0, )" + z +
+                                 R"(], [2, 0, )" + arm + R"(]], "director": [0, 0, 1]}}],
+    "boundary_conditions": [{"type": "clamp", "group": "A.start"}, {"type": "clamp", "group": "A.end"},
+                            {"type": "clamp", "group": "B.start"}, {"type": "clamp", "group": "B.end"}],
+    "contact": {"max_penetration": 1e-3},
+    "steps": [{"end_time": 1, "increments": 1}]})",
+                             "kink.json");
+}
+
+// The largest |N . e_y| over the contact elements: their normals' tilt out of the fibres' plane.
+double outOfPlane(const World& w) {
+  double most = 0;
+  for (const Vec3& n : w.contact().elements.normal) most = std::max(most, std::abs(n.y()));
+  return most;
+}
+
+}  // namespace
+
+TEST_CASE("a V-shaped fibre on a straight one: no force while its vertex is clear, its overlap found and pushed out") {
+  const double pMax = 1e-3;
+  {  // the vertex 0.01 mm (10 p_max) above A: nothing touches
+    World w(kinkScene(0.21));
+    const Eigen::VectorXd q0 = w.fibres().q;
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    REQUIRE(w.contact().elements.size() > 0);  // the zone is there (within reach)
+    CHECK(r.contact.active == 0);
+    CHECK(r.contact.maxPenetration == 0);
+    CHECK(outOfPlane(w) <= 1e-9);
+    CHECK((w.fibres().q - q0).lpNorm<Eigen::Infinity>() == 0);
+  }
+  {  // the vertex 0.01 mm deep in A: the overlap between the elements is found and pushed out
+    World w(kinkScene(0.19));
+    const StepReport r = w.step();
+    REQUIRE(r.status == StepStatus::Converged);
+    CHECK(r.contact.active > 0);
+    CHECK(r.contact.refinedZones >= 1);  // the vertex lies between the Gauss elements
+    CHECK(outOfPlane(w) <= 1e-9);
+    // independently: the sections' outlines x0 + R (cos a g1 + sin a g2), sampled every 0.01
+    // deg, at the vertex (B's node 10) and at A's middle node, both near x = 0 by symmetry (to
+    // the elements' placement); the overlap is how far A's highest point stands above B's lowest
+    const Eigen::VectorXd& q = w.fibres().q;
+    const Index vertex = w.fibres().firstNode[1] + 10, middle = w.fibres().firstNode[0] + 10;
+    REQUIRE(std::abs(x0Of(q, vertex).x()) <= 1e-4);
+    REQUIRE(std::abs(x0Of(q, middle).x()) <= 1e-4);
+    const auto extremeZ = [&](Index n, double sign) {
+      double most = -HUGE_VAL;
+      for (int k = 0; k < 36000; ++k) {
+        const double a = 2 * M_PI * k / 36000;
+        const Vec3 x = x0Of(q, n) + 0.1 * (std::cos(a) * g1Of(q, n) + std::sin(a) * g2Of(q, n));
+        most = std::max(most, sign * x.z());
+      }
+      return sign * most;
+    };
+    const double overlap = extremeZ(middle, 1) - extremeZ(vertex, -1);
+    CAPTURE(overlap);
+    CHECK(overlap > 0);       // still pressed: the clamped arms hold it down
+    CHECK(overlap <= pMax);   // within p_max (10 p_max at the start)
+    CHECK(r.contact.maxOverlap == doctest::Approx(overlap).epsilon(0.02).scale(0));
+    CHECK(r.contact.maxPenetration == doctest::Approx(overlap).epsilon(0.02).scale(0));
+  }
+}
