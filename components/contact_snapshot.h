@@ -23,6 +23,10 @@ struct ContactSnapshot {
   std::vector<std::uint8_t> slip;   // 1: sliding (friction >= 99% of mu R_N, kSlidingShare)
   std::vector<std::uint8_t> tool;   // 0: fibre-fibre, 1: fibre-tool
   std::vector<Index> fibreI, fibreJ;  // fibre indices (fibreJ: the tool's index for tools)
+  std::vector<Index> zone;          // the element's proximity zone in this state's set (-1: tool)
+  std::vector<std::uint8_t> refined;  // 1: its zone carries Lobatto elements because the
+                                      // acceptance found an overlap between its elements
+                                      // (ZoneStore::refined; 0 for tools)
 
   Index size() const { return Index(normal.size()); }
 };

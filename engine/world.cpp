@@ -57,11 +57,14 @@ ContactSnapshot World::contactSnapshot() const {
   };
   const ContactElementStore& el = s.elements;
   const ContactForceStore& f = s.forces;
-  for (Index e = 0; e < el.size(); ++e)
+  for (Index e = 0; e < el.size(); ++e) {
     add(particlePosition(w.fibres.q, forceParticle(el, f, e, 0)),
         particlePosition(w.fibres.q, forceParticle(el, f, e, 1)),
         el.normal[e], f, e, el.length[e], f.force[e] - f.normalForce[e] * el.normal[e],
         sliding(f.normalForce[e], f.gRev[e], gMax), false, el.fibreI[e], el.fibreJ[e]);
+    c.zone.push_back(el.zone[e]);
+    c.refined.push_back(s.zones.refined[el.zone[e]]);
+  }
   const ToolContactStore& t = s.toolElements;
   const ContactForceStore& tf = s.toolForces;
   for (Index i = 0; i < t.size(); ++i) {
@@ -71,6 +74,8 @@ ContactSnapshot World::contactSnapshot() const {
     add(x, x - tf.gap[i] * t.normal[i], t.normal[i], tf, i, t.length[i], friction,
         sliding(tf.normalForce[i], tf.gRev[i], gMax), true, w.fibres.elementFibre[t.element[i]],
         t.tool[i]);
+    c.zone.push_back(-1);
+    c.refined.push_back(0);
   }
   return c;
 }

@@ -114,7 +114,7 @@ void writeContactVtu(const std::string& path, const ContactSnapshot& c, const Vt
   std::vector<std::int64_t> connectivity, offsets;
   std::vector<std::uint8_t> types(n, kLine);
   std::vector<std::int32_t> fibreI(c.fibreI.begin(), c.fibreI.end()),
-      fibreJ(c.fibreJ.begin(), c.fibreJ.end());
+      fibreJ(c.fibreJ.begin(), c.fibreJ.end()), zone(c.zone.begin(), c.zone.end());
   for (Index e = 0; e < n; ++e) {
     for (const Vec3& x : {c.particleI[e], c.particleJ[e]})
       points.insert(points.end(), x.data(), x.data() + 3);
@@ -132,6 +132,8 @@ void writeContactVtu(const std::string& path, const ContactSnapshot& c, const Vt
   doc.array("tool", 1, c.tool);
   doc.array("fibre_i", 1, fibreI);
   doc.array("fibre_j", 1, fibreJ);
+  doc.array("zone", 1, zone);
+  doc.array("refined", 1, c.refined);
   doc.close("</CellData>");
   writeGrid(doc, points, connectivity, offsets, types);
   doc.write(path);

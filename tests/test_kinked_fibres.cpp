@@ -67,6 +67,15 @@ TEST_CASE("a V-shaped fibre on a straight one: no force while its vertex is clea
     REQUIRE(r.status == StepStatus::Converged);
     CHECK(r.contact.active > 0);
     CHECK(r.contact.refinedZones >= 1);  // the vertex lies between the Gauss elements
+    const ContactSnapshot c = w.contactSnapshot();  // as the VTU shows it: `refined` per element
+    REQUIRE(c.size() == w.contact().elements.size());
+    int refinedElements = 0;
+    for (Index e = 0; e < c.size(); ++e) {
+      CHECK(c.zone[e] == w.contact().elements.zone[e]);
+      CHECK(c.refined[e] == w.contact().zones.refined[c.zone[e]]);
+      refinedElements += c.refined[e];
+    }
+    CHECK(refinedElements >= 1);
     CHECK(outOfPlane(w) <= 1e-9);
     // independently: the sections' outlines x0 + R (cos a g1 + sin a g2), sampled every 0.01
     // deg, at the vertex (B's node 10) and at A's middle node, both near x = 0 by symmetry (to

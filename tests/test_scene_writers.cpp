@@ -157,6 +157,14 @@ TEST_CASE("contact VTU: one line per contact element, forces that balance the lo
                             gap = dataArray(xml, "Name=\"gap\"");
   REQUIRE(points.size() == 6 * size_t(c.size()));
   REQUIRE(force.size() == size_t(c.size()));
+  const std::vector<double> zone = dataArray(xml, "Name=\"zone\""),
+                            refined = dataArray(xml, "Name=\"refined\"");
+  REQUIRE(zone.size() == size_t(c.size()));
+  REQUIRE(refined.size() == size_t(c.size()));
+  for (Index e = 0; e < c.size(); ++e) {
+    CHECK(zone[e] == double(c.zone[e]));
+    CHECK(refined[e] == double(c.refined[e]));
+  }
   double total = 0;
   for (Index e = 0; e < c.size(); ++e) {
     const Vec3 xI = point(points, 2 * e), xJ = point(points, 2 * e + 1), N = point(normal, e);
