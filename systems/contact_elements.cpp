@@ -367,7 +367,8 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
     const NormalGap ng =
         forced ? forcedNormalAndGap(I, J, xiI, xiJ, N, p.forcedAllowance)
                : normalAndGap(I, J, xiI, xiJ, fs.radius[g.I], fs.radius[g.J], p.thetaParallel,
-                              p.thetaCross, flags, endRoom(fs, q, g.I, sides.sI, g.J, sides.sJ, p.thetaParallel));
+                              p.thetaCross, flags,
+                              endRoom(fs, q, g.I, sides.sI, g.J, sides.sJ, p.thetaParallel));
     el.normal[e] = ng.normal;
     el.gap[e] = ng.gap;
     el.theta[e] = ng.theta;

@@ -54,7 +54,8 @@ void updateNormalsAndGaps(const FibreStore& fs, const Eigen::VectorXd& q,
                                           params.forcedAllowance)
                      : normalAndGap(I, J, xiI, xiJ, fs.radius[fI], fs.radius[fJ],
                                     params.thetaParallel, params.thetaCross, el.fallback[e],
-                                    endRoom(fs, q, fI, el.sI[e], fJ, el.sJ[e], params.thetaParallel));
+                                    endRoom(fs, q, fI, el.sI[e], fJ, el.sJ[e],
+                                            params.thetaParallel));
           // A linearised normal already is the state's: only fixed ones can ask for a pass.
           if (!linearisedNormal(params, el, e))
             turned = std::max(turned,

@@ -79,7 +79,7 @@ namespace fibra {
 // stands for the fibre: a V-shaped fibre resting on a straight one by its vertex had the common
 // normal of one arm's tangent line and the straight fibre's axis, which meet in their plane far
 // from the vertex (N 33 degrees off the plane, 0.15 p_max of penetration reported and 9 mN
-// pushing where the fibres stood 28 p_max apart; tests/test_contact_normals.cpp).
+// pushing where the fibres stood 28 p_max apart; tests/test_kinked_fibres.cpp).
 constexpr double kEndReach = 2;
 
 struct EndRoom {

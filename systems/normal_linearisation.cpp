@@ -91,7 +91,8 @@ LinearisedContact linearisedContact(const FibreStore& fs, const Eigen::VectorXd&
   const VAD xmI = seeded(mI, 18), xmJ = seeded(mJ, 21);
   const NormalOf<AD> n = normalOfSections<AD>(
       seeded(I.x0, 6), seeded(J.x0, 9), seeded(I.dx0ds, 12), seeded(J.dx0ds, 15), xmI, xmJ, I.g1,
-      RI, RJ, thetaParallel, thetaCross, el.fallback[e], endRoom(fs, q, fI, el.sI[e], fJ, el.sJ[e], thetaParallel));
+      RI, RJ, thetaParallel, thetaCross, el.fallback[e],
+      endRoom(fs, q, fI, el.sI[e], fJ, el.sJ[e], thetaParallel));
   const VAD& N = n.normal;
   LinearisedContact out;
   out.normal = valueOf3(N);

@@ -15,6 +15,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 using namespace fibra;
@@ -32,8 +33,10 @@ SceneDef kinkScene(double zk) {
       {"name": "B", "material": "m", "radius": 0.1, "elements": 10,
        "geometry": {"type": "polyline", "points": [[-2, 0, )" + arm + R"(], [0, 0, )" + z +
                                  R"(], [2, 0, )" + arm + R"(]], "director": [0, 0, 1]}}],
-    "boundary_conditions": [{"type": "clamp", "group": "A.start"}, {"type": "clamp", "group": "A.end"},
-                            {"type": "clamp", "group": "B.start"}, {"type": "clamp", "group": "B.end"}],
+    "boundary_conditions": [{"type": "clamp", "group": "A.start"},
+                            {"type": "clamp", "group": "A.end"},
+                            {"type": "clamp", "group": "B.start"},
+                            {"type": "clamp", "group": "B.end"}],
     "contact": {"max_penetration": 1e-3},
     "steps": [{"end_time": 1, "increments": 1}]})",
                              "kink.json");
@@ -87,7 +90,7 @@ TEST_CASE("a V-shaped fibre on a straight one: no force while its vertex is clea
     const auto extremeZ = [&](Index n, double sign) {
       double most = -HUGE_VAL;
       for (int k = 0; k < 36000; ++k) {
-        const double a = 2 * M_PI * k / 36000;
+        const double a = 2 * std::numbers::pi * k / 36000;
         const Vec3 x = x0Of(q, n) + 0.1 * (std::cos(a) * g1Of(q, n) + std::sin(a) * g2Of(q, n));
         most = std::max(most, sign * x.z());
       }
