@@ -190,4 +190,34 @@ bool endFaceContact(const FibreStore& fs, const Eigen::VectorXd& q, const Centre
                     Index f, double s, const Section& S, Index o, double sep, double clearance,
                     double& so, Section& O, double xi[2]);
 
+// The point of fibre g's centreline closest to x within [lo, hi] (mm of arc length): on each
+// element the window meets, Newton on (x0(z) - x) . dx0/dz = 0 from its middle, clamped to the
+// element's part of the window, so that a minimum at a node (a kink, or the window's end) is
+// found as a clamped end; the nearest over the elements. s receives it (unchanged when the
+// window meets no element).
+inline void closestPointOnFibre(const FibreStore& fs, const CentrelineStore& cl, Index g,
+                                const Vec3& x, double lo, double hi, double& s) {
+  const double h = elementLength(fs, g);
+  const Index n = fs.elementCount[g];
+  double best = HUGE_VAL;
+  for (Index i = std::max<Index>(0, Index(std::floor(lo / h))); i < n && i * h <= hi; ++i) {
+    const CentrelinePolynomial& P = cl.poly[fs.firstElement[g] + i];
+    const double zLo = std::max(-1.0, 2 * (lo - i * h) / h - 1);
+    const double zHi = std::min(1.0, 2 * (hi - i * h) / h - 1);
+    if (!(zLo <= zHi)) continue;
+    double z = std::clamp(0.0, zLo, zHi);
+    for (int it = 0; it < 20; ++it) {
+      const Vec3 d = P.a + z * (P.b + z * P.c) - x, t = P.b + 2 * z * P.c;
+      const double slope = t.dot(t) + 2 * d.dot(P.c);
+      const double next = std::clamp(slope > 0 ? z - d.dot(t) / slope : (d.dot(t) > 0 ? zLo : zHi),
+                                     zLo, zHi);
+      const bool done = std::abs(next - z) <= 1e-12;
+      z = next;
+      if (done) break;
+    }
+    const double dist = (P.a + z * (P.b + z * P.c) - x).norm();
+    if (dist < best) best = dist, s = (i + 0.5 * (z + 1)) * h;
+  }
+}
+
 }  // namespace fibra

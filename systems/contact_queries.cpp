@@ -93,22 +93,6 @@ double faceDepth(const Section& S, double R, const Vec3& x) {
   return r > 0 ? halfWidth(S, R, radial / r) - r : halfWidth(S, R, S.g1.normalized());
 }
 
-// The point of fibre g's centreline closest to x within [lo, hi] (mm of arc length), by Newton
-// on (x_g(s) - x) . t_g(s) from s (in: the start; out: the point), clamped to the window.
-void closestOnFibre(const FibreStore& fs, const CentrelineStore& cl, Index g, const Vec3& x,
-                    double lo, double hi, double& s) {
-  for (int it = 0; it < 20; ++it) {
-    const CentrelinePoint c = centrelineAt(fs, cl, g, s);
-    const Vec3 d = c.x - x;
-    const double slope = c.dxds.dot(c.dxds) + d.dot(centrelineSecond(fs, cl, g, s));
-    if (!(slope > 0)) return;
-    const double next = std::clamp(s - d.dot(c.dxds) / slope, lo, hi);
-    const bool done = std::abs(next - s) <= 1e-10 * elementLength(fs, g);
-    s = next;
-    if (done) return;
-  }
-}
-
 // The overlap of the discs of I at sI and J at sJ (mm; tubeOverlap below says why these two
 // directions).
 double discOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const ContactParams& params,
@@ -170,12 +154,13 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
   if (!seekClosest) return depth;
   // A kinked node is a minimum of the centreline distance that the Newton search above, on
   // smooth pieces, does not land on: each kink in the windows is measured against the other
-  // fibre's point closest to it.
+  // fibre's point closest to it (element by element, so that a kink of the other fibre is found
+  // too: a vertex on a vertex).
   const auto atKinks = [&](Index f, Index g, double lo, double hi, double glo, double ghi,
                            bool fIsI) {
     forEachKink(fs, q, f, lo, hi, params.thetaParallel, [&](Index, double sk) {
       double sg = fIsI ? sJ : sI;
-      closestOnFibre(fs, cl, g, centrelineAt(fs, cl, f, sk).x, glo, ghi, sg);
+      closestPointOnFibre(fs, cl, g, centrelineAt(fs, cl, f, sk).x, glo, ghi, sg);
       const double a = fIsI ? sk : sg, b = fIsI ? sg : sk;
       const double k = discOverlap(fs, q, params, fI, a, fJ, b);
       if (k > depth) depth = k, sI = a, sJ = b;

@@ -163,6 +163,14 @@ TEST_CASE("the acceptance refines the zones whose fibres overlap between their G
   CHECK(refined < zones);  // only where the acceptance found an overlap between elements
   const ZoneStore& z = w.contact().zones;
   CHECK(std::count(z.refined.begin(), z.refined.end(), 1) == r.contact.refinedZones);
+  const ContactSnapshot c = w.contactSnapshot();  // as the contact VTU shows them: per element
+  int refinedElements = 0;
+  for (Index e = 0; e < w.contact().elements.size(); ++e) {
+    CHECK(c.zone[e] == w.contact().elements.zone[e]);
+    CHECK(c.refined[e] == z.refined[c.zone[e]]);
+    refinedElements += c.refined[e];
+  }
+  CHECK(refinedElements >= r.contact.refinedZones);
   // The refinement is carried in the checkpoint: resumed from it, the run ends bitwise the same.
   REQUIRE(checkpoint.rdbuf()->in_avail() > 0);
   World resumed(scene);
