@@ -191,10 +191,11 @@ bool endFaceContact(const FibreStore& fs, const Eigen::VectorXd& q, const Centre
                     double& so, Section& O, double xi[2]);
 
 // The point of fibre g's centreline closest to x within [lo, hi] (mm of arc length): on each
-// element the window meets, Newton on (x0(z) - x) . dx0/dz = 0 from its middle, clamped to the
+// element the window meets, Newton on (x0(z) - x) . dx0/dz = 0, clamped to the
 // element's part of the window, so that a minimum at a node (a kink, or the window's end) is
-// found as a clamped end; the nearest over the elements. s receives it (unchanged when the
-// window meets no element).
+// found as a clamped end; the nearest over the elements. Newton starts from the nearest of 17
+// points of each element's part (the squared distance to a quadratic piece is a quartic with up
+// to two minima). s receives it (unchanged when the window meets no element).
 inline void closestPointOnFibre(const FibreStore& fs, const CentrelineStore& cl, Index g,
                                 const Vec3& x, double lo, double hi, double& s) {
   const double h = elementLength(fs, g);
@@ -205,7 +206,12 @@ inline void closestPointOnFibre(const FibreStore& fs, const CentrelineStore& cl,
     const double zLo = std::max(-1.0, 2 * (lo - i * h) / h - 1);
     const double zHi = std::min(1.0, 2 * (hi - i * h) / h - 1);
     if (!(zLo <= zHi)) continue;
-    double z = std::clamp(0.0, zLo, zHi);
+    double z = zLo;  // Newton from the nearest of 17 points of the element's part
+    for (int k = 1; k <= 16; ++k) {
+      const double u = zLo + (zHi - zLo) * k / 16;
+      if ((P.a + u * (P.b + u * P.c) - x).squaredNorm() < (P.a + z * (P.b + z * P.c) - x).squaredNorm())
+        z = u;
+    }
     for (int it = 0; it < 20; ++it) {
       const Vec3 d = P.a + z * (P.b + z * P.c) - x, t = P.b + 2 * z * P.c;
       const double slope = t.dot(t) + 2 * d.dot(P.c);
