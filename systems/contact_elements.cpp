@@ -215,6 +215,49 @@ double crossingAt(const Intermediate& g, const ElementSides& s) {
   return tI.cross(tJ).norm();
 }
 
+// Kinked vertices (kinkedNode, systems/contact_geometry.h) in the windows that point at the
+// other fibre: the centre distance to the other fibre's closest point (closestPointOnFibre)
+// rises along both elements that meet there, d . t_after >= 0 >= d . t_before (d from the other
+// fibre's point to the vertex). Such a vertex is a narrow minimum that closestSections, Newton on
+// smooth pieces, never lands on: between two elements' sections a V-shaped fibre pressed by its
+// vertex onto a straight one overlapped it by 1.5 p_max where the elements reported 0.49, and
+// every attempt failed as an inconsistent set. Appended to `minima` unless already there.
+void kinkMinima(const Intermediate& g, const Windows& w, const ContactParams& p, double sep,
+                double h, std::vector<ElementSides>& minima) {
+  for (const bool onI : {true, false}) {
+    const Index f = onI ? g.I : g.J, o = onI ? g.J : g.I;
+    const double hf = elementLength(g.fs, f), lo = onI ? w.aI : w.aJ, hi = onI ? w.bI : w.bJ;
+    const Index first = g.fs.firstElement[f], n = g.fs.elementCount[f];
+    for (Index k = std::max<Index>(1, Index(std::ceil(lo / hf))); k < n && k * hf <= hi; ++k) {
+      if (!kinkedNode(g.fs, g.cl, f, k, p.thetaParallel)) continue;
+      const double sk = k * hf;
+      const CentrelinePolynomial &A = g.cl.poly[first + k - 1], &B = g.cl.poly[first + k];
+      const Vec3 x = B.a - B.b + B.c;  // the node: x0(z = -1) of the element after it
+      double so = onI ? 0.5 * (w.aJ + w.bJ) : 0.5 * (w.aI + w.bI);
+      closestPointOnFibre(g.fs, g.cl, o, x, onI ? w.aJ : w.aI, onI ? w.bJ : w.bI, so);
+      const Vec3 d = x - centrelineAt(g.fs, g.cl, o, so).x;
+      if (!(d.dot(B.b - 2 * B.c) >= 0 && d.dot(A.b + 2 * A.c) <= 0)) continue;
+      const ElementSides sides = onI ? ElementSides{sk, so, 0} : ElementSides{so, sk, 0};
+      if (g.I == g.J && !(std::abs(sides.sJ - sides.sI) >= sep)) continue;
+      const bool known = std::any_of(minima.begin(), minima.end(), [&](const ElementSides& m) {
+        return std::abs(m.sI - sides.sI) + std::abs(m.sJ - sides.sJ) <= h / 20;
+      });
+      if (!known) minima.push_back(sides);
+    }
+  }
+}
+
+// Whether a pair of sections has one at a kinked interior node of its fibre, or within 1e-3 h
+// of it (pairElementsAtNodes below moves a section at a node 1e-7 h into an element).
+bool atKink(const Intermediate& g, const ElementSides& s, double angle) {
+  const auto kinked = [&](Index f, double sf) {
+    const double h = elementLength(g.fs, f), node = std::round(sf / h);
+    return node > 0 && node < double(g.fs.elementCount[f]) && std::abs(sf - node * h) <= 1e-3 * h &&
+           kinkedNode(g.fs, g.cl, f, Index(node), angle);
+  };
+  return kinked(g.I, s.sI) || kinked(g.J, s.sJ);
+}
+
 std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
                                      const ContactParams& p, double sep, double L, Minima kind) {
   const double h = std::min(elementLength(g.fs, g.I), elementLength(g.fs, g.J));
@@ -242,6 +285,7 @@ std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
     });
     if (keep && !known) minima.push_back(sides);
   }
+  if (kind == Minima::Narrow) kinkMinima(g, w, p, sep, h, minima);
   // Along the zone (zetaAlong); a zone of zero length by (sI, sJ).
   const bool flat = g.dI == 0 && g.dJ == 0;
   std::stable_sort(minima.begin(), minima.end(), [&](const ElementSides& a, const ElementSides& b) {
@@ -342,8 +386,10 @@ void zoneElements(const FibreStore& fs, const Eigen::VectorXd& q, const ContactP
   if (nc > 1 && dips.empty() && placement == ElementPlacement::Lobatto) pairElementsAtNodes(g, all);
   for (e = first; e < first + nc; ++e) {
     ElementSides sides = all[e - first];
+    // a kinked vertex is not a crossing to follow: loop B's closest points (crossing_follow)
+    // are those of smooth pieces
     const bool closest =
-        atCrossing[e - first] ||
+        (atCrossing[e - first] && !atKink(g, sides, p.thetaParallel)) ||
         (nc == 1 && closestSections(g, windows, p.thetaParallel, sep, sides));
     Section I = contactSection(fs, q, g.I, sides.sI);
     Section J = contactSection(fs, q, g.J, sides.sJ);

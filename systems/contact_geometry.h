@@ -190,6 +190,19 @@ bool endFaceContact(const FibreStore& fs, const Eigen::VectorXd& q, const Centre
                     Index f, double s, const Section& S, Index o, double sep, double clearance,
                     double& so, Section& O, double xi[2]);
 
+// Whether the centreline of fibre f is kinked at its interior node k (1 .. n - 1): the tangents
+// of the two elements that meet there, from the polynomials (dx0/dz = b -+ 2c at z = +-1),
+// differ by more than `angle` (rad; the callers pass theta_parallel). A kink is a node that
+// the Newton searches on smooth pieces do not land on (systems/contact_normals.h, forEachKink,
+// does the same from q).
+inline bool kinkedNode(const FibreStore& fs, const CentrelineStore& cl, Index f, Index k,
+                       double angle) {
+  const CentrelinePolynomial& A = cl.poly[fs.firstElement[f] + k - 1];
+  const CentrelinePolynomial& B = cl.poly[fs.firstElement[f] + k];
+  const Vec3 a = A.b + 2 * A.c, b = B.b - 2 * B.c;
+  return std::atan2(a.cross(b).norm(), a.dot(b)) > angle;
+}
+
 // The point of fibre g's centreline closest to x within [lo, hi] (mm of arc length): on each
 // element the window meets, Newton on (x0(z) - x) . dx0/dz = 0, clamped to the
 // element's part of the window, so that a minimum at a node (a kink, or the window's end) is

@@ -452,6 +452,56 @@ inline std::vector<Element> elements(const FibreStore& fs, const Eigen::VectorXd
       for (const Element& m : minima) known = known || std::abs(m.sI - st.sI) + std::abs(m.sJ - st.sJ) <= hMin / 20;
       if (keep && !known) minima.push_back(st);
     }
+    // Long zones: kinked vertices (an interior node where the two elements' tangents differ by
+    // more than theta_parallel) in the brackets that point at the other fibre (the distance to
+    // its closest point, `closest`, rising along both elements at the node).
+    for (int side = 0; side < 2 && !point; ++side) {
+      const Index f = side == 0 ? I : J, o = side == 0 ? J : I;
+      const auto [a, b] = side == 0 ? bracketOf(I, z.sI1, z.sI2) : bracketOf(J, z.sJ1, z.sJ2);
+      const auto [ao, bo] = side == 0 ? bracketOf(J, z.sJ1, z.sJ2) : bracketOf(I, z.sI1, z.sI2);
+      const double h = fs.length[f] / fs.elementCount[f];
+      for (Index k = 1; k < fs.elementCount[f]; ++k) {
+        const double sk = double(k) * h;
+        if (sk < a || sk > b) continue;
+        const Section before = sectionAt(fs, q, {fs.firstElement[f] + k - 1, 1.0});
+        const Section after = sectionAt(fs, q, {fs.firstElement[f] + k, -1.0});
+        const double turn = std::acos(std::clamp(
+            before.dx0ds.normalized().dot(after.dx0ds.normalized()), -1.0, 1.0));
+        if (!(turn > p.thetaParallel)) continue;
+        // the other fibre's point nearest the vertex: 1024 samples per element length, then
+        // golden-section search on the distance within a sample step of the best (a kink of the
+        // other fibre between two near-equal minima is in reach of neither Newton nor `closest`'s
+        // bisection of its gradient)
+        double so = ao;
+        {
+          const double ho = fs.length[o] / fs.elementCount[o];
+          const int n = std::max(1024, int(std::ceil((bo - ao) / ho * 1024)));
+          double best = 1e300;
+          for (int i = 0; i <= n; ++i) {
+            const double u = i == n ? bo : ao + (bo - ao) * i / n;
+            const double dd = (at(fs, q, o, u).x0 - after.x0).squaredNorm();
+            if (dd < best) best = dd, so = u;
+          }
+          const double step = (bo - ao) / n, g = 0.5 * (std::sqrt(5.0) - 1);
+          double lo = std::max(ao, so - step), hi = std::min(bo, so + step);
+          const auto dist2 = [&](double u) { return (at(fs, q, o, u).x0 - after.x0).squaredNorm(); };
+          for (int it = 0; it < 120; ++it) {
+            const double c = hi - g * (hi - lo), e = lo + g * (hi - lo);
+            if (dist2(c) < dist2(e)) hi = e;
+            else lo = c;
+          }
+          so = 0.5 * (lo + hi);
+        }
+        const Vec3 d = after.x0 - at(fs, q, o, so).x0;
+        if (!(d.dot(after.dx0ds) >= 0 && d.dot(before.dx0ds) <= 0)) continue;
+        Element st{};
+        st.sI = side == 0 ? sk : so, st.sJ = side == 0 ? so : sk;
+        if (I == J && !(std::abs(st.sJ - st.sI) >= sepIJ)) continue;
+        bool known = false;
+        for (const Element& m : minima) known = known || std::abs(m.sI - st.sI) + std::abs(m.sJ - st.sJ) <= hMin / 20;
+        if (!known) minima.push_back(st);
+      }
+    }
     const bool flat = dI == 0 && dJ == 0;  // a zone of zero length: by (sI, sJ)
     std::stable_sort(minima.begin(), minima.end(), [&](const Element& a, const Element& b) {
       return flat ? a.sI < b.sI || (a.sI == b.sI && a.sJ < b.sJ) : zetaOf(a) < zetaOf(b);
