@@ -219,11 +219,11 @@ inline void closestPointOnFibre(const FibreStore& fs, const CentrelineStore& cl,
     const double zLo = std::max(-1.0, 2 * (lo - i * h) / h - 1);
     const double zHi = std::min(1.0, 2 * (hi - i * h) / h - 1);
     if (!(zLo <= zHi)) continue;
+    const auto dist2 = [&](double u) { return (P.a + u * (P.b + u * P.c) - x).squaredNorm(); };
     double z = zLo;  // Newton from the nearest of 17 points of the element's part
     for (int k = 1; k <= 16; ++k) {
       const double u = zLo + (zHi - zLo) * k / 16;
-      if ((P.a + u * (P.b + u * P.c) - x).squaredNorm() < (P.a + z * (P.b + z * P.c) - x).squaredNorm())
-        z = u;
+      if (dist2(u) < dist2(z)) z = u;
     }
     for (int it = 0; it < 20; ++it) {
       const Vec3 d = P.a + z * (P.b + z * P.c) - x, t = P.b + 2 * z * P.c;
@@ -234,8 +234,7 @@ inline void closestPointOnFibre(const FibreStore& fs, const CentrelineStore& cl,
       z = next;
       if (done) break;
     }
-    const double dist = (P.a + z * (P.b + z * P.c) - x).norm();
-    if (dist < best) best = dist, s = (i + 0.5 * (z + 1)) * h;
+    if (dist2(z) < best) best = dist2(z), s = (i + 0.5 * (z + 1)) * h;
   }
 }
 
