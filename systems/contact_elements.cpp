@@ -247,17 +247,6 @@ void kinkMinima(const Intermediate& g, const Windows& w, const ContactParams& p,
   }
 }
 
-// Whether a pair of sections has one at a kinked interior node of its fibre, or within 1e-3 h
-// of it (pairElementsAtNodes below moves a section at a node 1e-7 h into an element).
-bool atKink(const Intermediate& g, const ElementSides& s, double angle) {
-  const auto kinked = [&](Index f, double sf) {
-    const double h = elementLength(g.fs, f), node = std::round(sf / h);
-    return node > 0 && node < double(g.fs.elementCount[f]) && std::abs(sf - node * h) <= 1e-3 * h &&
-           kinkedNode(g.fs, g.cl, f, Index(node), angle);
-  };
-  return kinked(g.I, s.sI) || kinked(g.J, s.sJ);
-}
-
 std::vector<ElementSides> zoneMinima(const Intermediate& g, const Windows& w,
                                      const ContactParams& p, double sep, double L, Minima kind) {
   const double h = std::min(elementLength(g.fs, g.I), elementLength(g.fs, g.J));
@@ -329,6 +318,17 @@ void pairElementsAtNodes(const Intermediate& g, std::vector<ElementSides>& all) 
       else if (element == Index(node)) sf(k) = (node + kInside) * h;
     }
   }
+}
+
+// Whether a pair of sections has one at a kinked interior node of its fibre, or within kAtNode h
+// of it (pairElementsAtNodes above moves a section at a node kInside h into an element).
+bool atKink(const Intermediate& g, const ElementSides& s, double angle) {
+  const auto kinked = [&](Index f, double sf) {
+    const double h = elementLength(g.fs, f), node = std::round(sf / h);
+    return node > 0 && node < double(g.fs.elementCount[f]) &&
+           std::abs(sf - node * h) <= kAtNode * h && kinkedNode(g.fs, g.cl, f, Index(node), angle);
+  };
+  return kinked(g.I, s.sI) || kinked(g.J, s.sJ);
 }
 
 // The zone's element count: the abscissas of forEachElementAbscissa, or a point zone's dips (its

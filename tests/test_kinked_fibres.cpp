@@ -57,6 +57,17 @@ double outOfPlane(const World& w) {
   return most;
 }
 
+// The overlap of the sections at nodes a and b (R = 0.1 mm) along their line of centres n: each
+// section, the ellipse R (cos t g1 + sin t g2) about x0, reaches R sqrt((g1.n)^2 + (g2.n)^2)
+// along n (its support function), mm.
+double nodeOverlap(const Eigen::VectorXd& q, Index a, Index b) {
+  const Vec3 d = x0Of(q, b) - x0Of(q, a), n = d.normalized();
+  const auto reach = [&](Index v) {
+    return 0.1 * std::hypot(g1Of(q, v).dot(n), g2Of(q, v).dot(n));
+  };
+  return reach(a) + reach(b) - d.norm();
+}
+
 }  // namespace
 
 TEST_CASE("a V-shaped fibre on a straight one: no force while its vertex is clear, an element at its vertex when it presses") {
@@ -126,11 +137,7 @@ TEST_CASE("a V-shaped fibre on a straight one: no force while its vertex is clea
     const Index vB = w.fibres().firstNode[1] + 10, mA = w.fibres().firstNode[0] + 10;
     REQUIRE(std::abs(x0Of(q, vB).x()) <= 1e-4);
     REQUIRE(std::abs(x0Of(q, mA).x()) <= 1e-4);
-    const Vec3 d = x0Of(q, vB) - x0Of(q, mA), n = d.normalized();
-    const auto reach = [&](Index v) {
-      return 0.1 * std::hypot(g1Of(q, v).dot(n), g2Of(q, v).dot(n));
-    };
-    const double overlap = reach(mA) + reach(vB) - d.norm();
+    const double overlap = nodeOverlap(q, mA, vB);
     CAPTURE(overlap);
     CHECK(overlap > 0);
     CHECK(overlap <= pMax);
@@ -146,13 +153,7 @@ TEST_CASE("a V-shaped fibre on a straight one: no force while its vertex is clea
     CHECK(r.contact.active > 0);
     const Eigen::VectorXd& q = w.fibres().q;
     const Index vB = w.fibres().firstNode[1] + 10, vA = w.fibres().firstNode[0] + 10;
-    // the vertices' sections, ellipses R (cos a g1 + sin a g2) about x0, along their line of
-    // centres n: each reaches R sqrt((g1.n)^2 + (g2.n)^2) (its support function)
-    const Vec3 d = x0Of(q, vB) - x0Of(q, vA), n = d.normalized();
-    const auto reach = [&](Index v) {
-      return 0.1 * std::hypot(g1Of(q, v).dot(n), g2Of(q, v).dot(n));
-    };
-    const double overlap = reach(vA) + reach(vB) - d.norm();
+    const double overlap = nodeOverlap(q, vA, vB);  // the vertices' sections
     CAPTURE(overlap);
     CHECK(overlap > 0);
     CHECK(overlap <= pMax);
