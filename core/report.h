@@ -81,6 +81,12 @@ struct ContactReport {
   double maxOverlapRatio = 0;  // the largest overlap / its element's p_max (its pair's)
   int overlapFibreI = -1, overlapFibreJ = -1;  // the fibres of that overlap (-1: none)
   double overlapSI = 0, overlapSJ = 0;         // its reference arc lengths on them, mm
+  double falseClearance = 0;   // the fibres' clearance at an element that pushes (R_N > 0:
+                               // a force no contact makes, systems/contact_queries.h
+                               // falseForce), max over the set's elements, mm; 0: none
+  double falseClearanceRatio = 0;  // the largest such clearance / its element's p_max
+  int falseFibreI = -1, falseFibreJ = -1;  // the fibres of that clearance (-1: none)
+  double falseSI = 0, falseSJ = 0;         // its reference arc lengths on them, mm
   int redetectZoneChanges = 0; // zones that appear, vanish or change their element count
   double redetectGapChange = 0;     // max |g_N new - g_N used| / p_max over paired elements
   double redetectParticleShift = 0; // max particle shift (arc length and section) / R, same

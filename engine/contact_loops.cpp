@@ -71,7 +71,13 @@ NewtonResult newton(WorldState& w, const NewtonSettings& settings, const NewtonC
 // the closest ones (they drifted as the fibres slid or turned), or the fibres overlap between
 // the elements (the Gauss points see neither a node nor a dip between them).
 double overlapLimit(const ContactReport& r) { return 1.5 * std::max(1.0, r.maxPenetrationRatio); }
-bool inconsistent(const ContactReport& r) { return r.maxOverlapRatio > overlapLimit(r); }
+bool tooDeep(const ContactReport& r) { return r.maxOverlapRatio > overlapLimit(r); }
+// The set is wrong as well when an element pushes where the fibres stand clear of each other by
+// more than this many of its p_max (falseForce, systems/contact_queries.h): its normal lags
+// behind the line of centres, and the equilibrium it makes is a false one.
+constexpr double kFalseClearance = 1;
+bool falseForces(const ContactReport& r) { return r.falseClearanceRatio > kFalseClearance; }
+bool inconsistent(const ContactReport& r) { return tooDeep(r) || falseForces(r); }
 
 // The contact set the accepted state was solved with, against a detection from that state (the
 // stores are put back afterwards; the detection cache holds nothing results depend on): the true
@@ -99,6 +105,11 @@ void checkContactSet(WorldState& w, double t, ContactReport& report,
   report.maxOverlapRatio = o.ratio;
   report.overlapFibreI = int(o.fibreI), report.overlapFibreJ = int(o.fibreJ);
   report.overlapSI = o.sI, report.overlapSJ = o.sJ;
+  const Overlap f = falseForce(w.fibres, w.fibres.q, w.cache.centrelines, used, w.contact);
+  report.falseClearance = f.depth;
+  report.falseClearanceRatio = f.ratio;
+  report.falseFibreI = int(f.fibreI), report.falseFibreJ = int(f.fibreJ);
+  report.falseSI = f.sI, report.falseSJ = f.sJ;
   compareContactSets(w.fibres, used, w.trial, w.contact, report);
   w.trial = std::move(used);
 }
@@ -163,11 +174,35 @@ NewtonResult normalLoop(WorldState& w, double tTry, const NewtonSettings& settin
   return nr;
 }
 
-// Where the deepest overlap is: "'a' at s = 1.2 mm and 'b' at s = 3.4 mm".
-std::string overlapPlace(const FibreStore& fs, const ContactReport& r) {
-  if (r.overlapFibreI < 0) return "nowhere";
-  return "'" + fs.name[r.overlapFibreI] + "' at s = " + number(r.overlapSI) + " mm and '" +
-         fs.name[r.overlapFibreJ] + "' at s = " + number(r.overlapSJ) + " mm";
+// Passes the acceptance may add with a new detection (acceptContactSet).
+constexpr int kConsistencyPasses = 2;
+
+// A place on two fibres: "'a' at s = 1.2 mm and 'b' at s = 3.4 mm".
+std::string place(const FibreStore& fs, int fI, double sI, int fJ, double sJ) {
+  if (fI < 0) return "nowhere";
+  return "'" + fs.name[fI] + "' at s = " + number(sI) + " mm and '" + fs.name[fJ] +
+         "' at s = " + number(sJ) + " mm";
+}
+
+// Why an inconsistent set was refused, for the failure's message.
+std::string inconsistency(const WorldState& w, const ContactReport& r) {
+  const std::string passes = std::to_string(kConsistencyPasses) + " passes with a new detection";
+  if (!tooDeep(r))
+    return "false contact force: an element pushes where the fibres stand " +
+           number(r.falseClearance) + " mm (" + number(r.falseClearanceRatio) +
+           " p_max of their pair) clear of each other (" +
+           place(w.fibres, r.falseFibreI, r.falseSI, r.falseFibreJ, r.falseSJ) + "), after " +
+           passes;
+  return "inconsistent contact set: the fibres overlap by " + number(r.maxOverlapRatio) +
+         " p_max of their pair (" +
+         place(w.fibres, r.overlapFibreI, r.overlapSI, r.overlapFibreJ, r.overlapSJ) +
+         "; deepest overlap " + number(r.maxOverlap) + " mm) where the elements report at most " +
+         number(r.maxPenetrationRatio) + " p_max (" + number(r.maxPenetration) + " mm), after " +
+         passes +
+         (w.contact.placement == ElementPlacement::Paper
+              ? " (contact element_placement \"paper\" is never refined; \"weighted\" "
+                "refines the zones where the fibres overlap between elements)"
+              : "");
 }
 
 // The zones of `overlapped` take Lobatto elements from the next detection on (ZoneStore::
@@ -189,7 +224,6 @@ int refineZones(const ContactParams& p, ZoneStore& zones, const std::vector<Inde
 // to kConsistencyPasses more passes solve with the new detection's elements, the zones that
 // overlapped refined (refineZones); still inconsistent, the attempt fails (a cutback), never a
 // silent acceptance.
-constexpr int kConsistencyPasses = 2;
 NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& settings,
                               const NewtonCallbacks& callbacks, StepTimings& timings,
                               ContactReport& report, NormalMixer& mixer, NewtonResult nr) {
@@ -203,17 +237,7 @@ NewtonResult acceptContactSet(WorldState& w, double tTry, const NewtonSettings& 
     if (!inconsistent(report)) return nr;
     if (extra == kConsistencyPasses) {
       nr.outcome = NewtonOutcome::Failed;
-      nr.message = "inconsistent contact set: the fibres overlap by " +
-                   number(report.maxOverlapRatio) + " p_max of their pair (" +
-                   overlapPlace(w.fibres, report) + "; deepest overlap " +
-                   number(report.maxOverlap) + " mm) where the elements report at most " +
-                   number(report.maxPenetrationRatio) + " p_max (" +
-                   number(report.maxPenetration) + " mm), after " +
-                   std::to_string(kConsistencyPasses) + " passes with a new detection" +
-                   (w.contact.placement == ElementPlacement::Paper
-                        ? " (contact element_placement \"paper\" is never refined; \"weighted\" "
-                          "refines the zones where the fibres overlap between elements)"
-                        : "");
+      nr.message = inconsistency(w, report);
       return nr;
     }
     report.newlyRefinedZones += refineZones(w.contact, w.trial.zones, overlapped);

@@ -97,7 +97,7 @@ HistoryColumns contactColumns(const World& world) {
            "contact.redetect_zone_changes", "contact.redetect_gap_change",
            "contact.redetect_particle_shift", "contact.consistency_passes",
            "contact.friction_held", "contact.friction_excess", "contact.normal_mixes",
-           "contact.refined_zones"},
+           "contact.refined_zones", "contact.false_clearance"},
           [](const World&, const StepReport& r, std::vector<double>& row) {
             const ContactReport& c = r.contact;
             row.insert(row.end(), {double(c.zones), double(c.elements), double(c.toolElements),
@@ -110,7 +110,7 @@ HistoryColumns contactColumns(const World& world) {
                                    c.redetectGapChange, c.redetectParticleShift,
                                    double(c.consistencyPasses), double(c.frictionHeld),
                                    c.frictionExcess, double(c.normalMixes),
-                                   double(c.refinedZones)});
+                                   double(c.refinedZones), c.falseClearance});
           }};
 }
 

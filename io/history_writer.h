@@ -58,7 +58,9 @@ HistoryColumns toolColumns(const World& world);
 // that rebuilt the broadphase's candidate set), .candidate_pairs (of the last detection), ...,
 // .normal_mixes (normal updates of loop B replaced by the Anderson-mixed normals, summed over
 // loop A; contact `normal_acceleration`), .refined_zones (zones of the accepted set with
-// Lobatto elements by the acceptance's refinement, ZoneStore::refined).
+// Lobatto elements by the acceptance's refinement, ZoneStore::refined), .false_clearance (mm:
+// the fibres' largest clearance near an element of the accepted set that pushes,
+// systems/contact_queries.h falseForce; 0 when every pushing element's fibres touch).
 HistoryColumns contactColumns(const World& world);
 // When some step has damping: viscous_force, |the continuation's force on the free DOFs| / F_ref
 // at the end of the increment (how far the state is from static equilibrium; 0 in steps

@@ -173,6 +173,39 @@ double tubeOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
 
 }  // namespace
 
+namespace {
+
+// Element e's true overlap at the state q (mm; negative: the fibres' clearance there), measured
+// as trueOverlap says; sI, sJ receive where (reference arc lengths, mm).
+double elementOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                      const ContactElementStore& el, Index e, const ContactParams& params,
+                      double& sI, double& sJ) {
+  const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
+  sI = el.sI[e], sJ = el.sJ[e];
+  if (el.fallback[e] & (kEndFaceI | kEndFaceJ)) {
+    const Section I = contactSection(fs, q, fI, sI), J = contactSection(fs, q, fJ, sJ);
+    return el.fallback[e] & kEndFaceI
+               ? faceDepth(J, fs.radius[fJ], I.x0 + el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2)
+               : faceDepth(I, fs.radius[fI], J.x0 + el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2);
+  }
+  return tubeOverlap(fs, q, cl, params, fI, fJ, sI, sJ, !el.forced[e]) -
+         forcedAllowance(params, el.forced[e]);
+}
+
+// Keeps in `o` the element e's figure `depth` (mm) if its ratio to the element's p_max is the
+// largest so far.
+void keepLargest(Overlap& o, const ContactState& s, Index e, double depth, double sI, double sJ) {
+  const ContactElementStore& el = s.elements;
+  o.depth = std::max(o.depth, depth);
+  const double ratio = depth / s.zones.pMax[el.zone[e]];
+  if (ratio <= o.ratio) return;
+  o.ratio = ratio;
+  o.fibreI = el.fibreI[e], o.fibreJ = el.fibreJ[e];
+  o.sI = sI, o.sJ = sJ;
+}
+
+}  // namespace
+
 Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
                     const ContactState& detected, const ContactParams& params,
                     std::vector<double>* ratios) {
@@ -180,28 +213,77 @@ Overlap trueOverlap(const FibreStore& fs, const Eigen::VectorXd& q, const Centre
   Overlap deepest;
   if (ratios) ratios->assign(std::size_t(el.size()), 0.0);
   for (Index e = 0; e < el.size(); ++e) {
-    const Index fI = el.fibreI[e], fJ = el.fibreJ[e];
-    double depth, sI = el.sI[e], sJ = el.sJ[e];
-    if (el.fallback[e] & (kEndFaceI | kEndFaceJ)) {
-      const Section I = contactSection(fs, q, fI, el.sI[e]);
-      const Section J = contactSection(fs, q, fJ, el.sJ[e]);
-      depth = el.fallback[e] & kEndFaceI
-                  ? faceDepth(J, fs.radius[fJ], I.x0 + el.xiI1[e] * I.g1 + el.xiI2[e] * I.g2)
-                  : faceDepth(I, fs.radius[fI], J.x0 + el.xiJ1[e] * J.g1 + el.xiJ2[e] * J.g2);
-    } else {
-      depth = tubeOverlap(fs, q, cl, params, fI, fJ, sI, sJ, !el.forced[e]) -
-              forcedAllowance(params, el.forced[e]);
-    }
-    deepest.depth = std::max(deepest.depth, depth);
-    const double ratio = depth / detected.zones.pMax[el.zone[e]];
-    if (ratios) (*ratios)[std::size_t(e)] = ratio;
-    if (ratio > deepest.ratio) {
-      deepest.ratio = ratio;
-      deepest.fibreI = fI, deepest.fibreJ = fJ;
-      deepest.sI = sI, deepest.sJ = sJ;
-    }
+    double sI, sJ;
+    const double depth = elementOverlap(fs, q, cl, el, e, params, sI, sJ);
+    if (ratios) (*ratios)[std::size_t(e)] = depth / detected.zones.pMax[el.zone[e]];
+    keepLargest(deepest, detected, e, depth, sI, sJ);
   }
   return deepest;
+}
+
+namespace {
+
+// The fibres' largest overlap near the pair (sI, sJ), mm (negative: their clearance): over the
+// sections x_I(s) of I's window [sI - h_I, sI + h_I], each against the closest point of J's
+// window [sJ - h_J, sJ + h_J] (closestPointOnFibre), the discs' overlap along the line between
+// them, w_I + w_J - |d| (support functions: each a bound of the true overlap from above); the
+// best of 33 samples, refined by golden-section search between its neighbours. Where the element
+// stands for a crossing that lies between its Gauss points (eq. 10 measures the tangent lines'
+// distance, not the sections'), the crossing is in the window. A pair that touches at s = sI is
+// not searched further (only clearances are asked for: the overlap there is returned).
+double nearestApproach(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                       Index fI, double sI, Index fJ, double sJ, double& atI, double& atJ) {
+  const double hI = elementLength(fs, fI), hJ = elementLength(fs, fJ);
+  const double lo = std::max(0.0, sI - hI), hi = std::min(fs.length[fI], sI + hI);
+  const double loJ = std::max(0.0, sJ - hJ), hiJ = std::min(fs.length[fJ], sJ + hJ);
+  const double RI = fs.radius[fI], RJ = fs.radius[fJ];
+  const auto overlapAt = [&](double s, double& sOther) {
+    sOther = sJ;
+    closestPointOnFibre(fs, cl, fJ, centrelineAt(fs, cl, fI, s).x, loJ, hiJ, sOther);
+    const Section I = contactSection(fs, q, fI, s), J = contactSection(fs, q, fJ, sOther);
+    const Vec3 d = I.x0 - J.x0;
+    const double dist = d.norm();
+    const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
+    return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist;
+  };
+  double best = overlapAt(sI, atJ), sOther;
+  atI = sI;
+  if (best >= 0) return best;
+  const auto keep = [&](double s) {
+    if (const double o = overlapAt(s, sOther); o > best) best = o, atI = s, atJ = sOther;
+  };
+  constexpr int kSamples = 32;
+  for (int k = 0; k <= kSamples; ++k) keep(lo + (hi - lo) * k / kSamples);
+  const double phi = (std::sqrt(5.0) - 1) / 2, step = (hi - lo) / kSamples;
+  double a = std::max(lo, atI - step), b = std::min(hi, atI + step);
+  for (int i = 0; i < 40 && b - a > 1e-9 * hI; ++i) {
+    const double c = b - phi * (b - a), e = a + phi * (b - a);
+    double sc, se;
+    if (overlapAt(c, sc) > overlapAt(e, se))
+      b = e;
+    else
+      a = c;
+  }
+  keep(0.5 * (a + b));
+  return best;
+}
+
+}  // namespace
+
+Overlap falseForce(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
+                   const ContactState& used, const ContactParams& params) {
+  const ContactElementStore& el = used.elements;
+  Overlap clearest;
+  for (Index e = 0; e < el.size(); ++e) {
+    if (el.forced[e] || e >= used.forces.size() || !(used.forces.normalForce[e] > 0)) continue;
+    double sI, sJ;
+    const double depth =
+        el.fallback[e] & (kEndFaceI | kEndFaceJ)
+            ? elementOverlap(fs, q, cl, el, e, params, sI, sJ)
+            : nearestApproach(fs, q, cl, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e], sI, sJ);
+    keepLargest(clearest, used, e, -depth, sI, sJ);
+  }
+  return clearest;
 }
 
 namespace {

@@ -47,6 +47,21 @@
 //                     less the overlap its step still allows (ContactParams::forcedAllowance),
 //                     as its gap is. `centrelines`: the state q's (computed by the detection).
 //                     `ratios` (optional): receives each element's overlap / its zone's p_max.
+// falseForce          over the elements of the set the state q was solved with (`used`) that
+//                     push (R_N > 0 at the last evaluation; forced elements aside: their normal
+//                     is the procedure's, not the fibres'), the fibres' clearance near the
+//                     element: minus their largest overlap within one element length of its
+//                     sections, each section x_I(s) of I's window against J's closest point in
+//                     J's window, w_I + w_J - |d| along the line between them (support
+//                     functions), the best of 33 samples refined by golden section; an end-face
+//                     element by its face's depth, as trueOverlap. The window, not the element's
+//                     own sections: Gauss elements that straddle a crossing carry its force
+//                     through eq. 10's tangent lines while their own sections stand clear. The
+//                     largest as a multiple of the element's p_max, with where. An element that
+//                     pushes where the fibres near it stand clear carries a force no contact
+//                     makes: its normal N lags behind the line of centres, so g = d . N < 0
+//                     while |d| > w_I + w_J (a normal loop left unsettled after a slip). Mm; 0
+//                     when every pushing element's fibres touch.
 // compareContactSets  a detection from the accepted state (`fresh`) against the set the state
 //                     was solved with (`used`): zones paired by id; zones without a partner or
 //                     with another element count are counted; elements of paired zones paired
@@ -111,6 +126,12 @@ struct Overlap {
 Overlap trueOverlap(const FibreStore& fibres, const Eigen::VectorXd& q,
                     const CentrelineStore& centrelines, const ContactState& detected,
                     const ContactParams& params, std::vector<double>* ratios = nullptr);
+
+// The largest clearance of the fibres at an element of `used` that pushes (mm, and as a multiple
+// of that element's p_max), with where; `centrelines`: the state q's.
+Overlap falseForce(const FibreStore& fibres, const Eigen::VectorXd& q,
+                   const CentrelineStore& centrelines, const ContactState& used,
+                   const ContactParams& params);
 
 // Tool `tool`'s deepest overlap with the fibres of state q at pseudo-time t (mm; 0 and element -1
 // when none overlaps it), and where: the element and its parameter z in [-1, 1].

@@ -44,15 +44,17 @@ inline std::pair<Vec3, Vec3> directors(const FibreStore& fs, const Eigen::Vector
   return {interpolated(fs, q, f, s, 3), interpolated(fs, q, f, s, 6)};
 }
 
-// Closest approach of the centrelines of I and J within 0.5 mm of sI0 on I and sJ0 on J (mm):
-// sampled every 5 um, then every 0.05 um within 10 um of the best pair.
+// Closest approach of the centrelines of I and J within `within` mm of sI0 on I and sJ0 on J
+// (mm): sampled every 5 um, then every 0.05 um within 10 um of the best pair (in the windows).
 inline Closest closestApproach(const FibreStore& fs, const Eigen::VectorXd& q, Index I, Index J,
-                               double sI0, double sJ0) {
+                               double sI0, double sJ0, double within = 0.5) {
+  const double loI = std::max(0.0, sI0 - within), hiI = std::min(fs.length[I], sI0 + within);
+  const double loJ = std::max(0.0, sJ0 - within), hiJ = std::min(fs.length[J], sJ0 + within);
   double bestI = sI0, bestJ = sJ0, best = 1e300;
   for (double step : {5e-3, 5e-5}) {
-    const double cI = bestI, cJ = bestJ, span = step == 5e-3 ? 0.5 : 1e-2;
-    for (double a = std::max(0.0, cI - span); a <= std::min(fs.length[I], cI + span); a += step)
-      for (double b = std::max(0.0, cJ - span); b <= std::min(fs.length[J], cJ + span); b += step) {
+    const double cI = bestI, cJ = bestJ, span = step == 5e-3 ? within : 1e-2;
+    for (double a = std::max(loI, cI - span); a <= std::min(hiI, cI + span); a += step)
+      for (double b = std::max(loJ, cJ - span); b <= std::min(hiJ, cJ + span); b += step) {
         const double d = (centreline(fs, q, I, a) - centreline(fs, q, J, b)).norm();
         if (d < best) best = d, bestI = a, bestJ = b;
       }
