@@ -33,8 +33,8 @@
 // state; when the fibres truly overlap (centrelines and radii, end faces against the other's
 // surface) by more than 1.5 x the deepest penetration the elements report (and p_max), the state
 // is solved again with the new detection's elements, at most twice, and the attempt fails (a
-// cutback) if it still is; likewise where an element of the set pushes (R_N > 0) while the
-// fibres near it stand more than p_max apart (a normal that lags behind a slip: a false
+// cutback) if it still is; likewise where an element of the set pushes (R_N > 0), its fibres
+// parallel there, while the fibres near it stand more than p_max apart (a normal that lags behind a slip: a false
 // equilibrium, systems/contact_queries.h falseForce): an inconsistent set is never accepted
 // (ContactReport::consistencyPasses counts the passes added). Under the default Gauss placement, the zones
 // where the overlap was found take Lobatto elements from that new detection on

@@ -268,6 +268,15 @@ double nearestApproach(const FibreStore& fs, const Eigen::VectorXd& q, const Cen
   return best;
 }
 
+// Whether element e's fibres make less than thetaParallel (rad) at its sections: its normal is
+// then the line of centres (eq. 10 without n_cross), and its gap the sections' own.
+bool parallelAt(const FibreStore& fs, const Eigen::VectorXd& q, const ContactElementStore& el,
+                Index e, double thetaParallel) {
+  const Vec3 tI = contactSection(fs, q, el.fibreI[e], el.sI[e]).dx0ds.normalized();
+  const Vec3 tJ = contactSection(fs, q, el.fibreJ[e], el.sJ[e]).dx0ds.normalized();
+  return std::atan2(tI.cross(tJ).norm(), std::abs(tI.dot(tJ))) < thetaParallel;
+}
+
 }  // namespace
 
 Overlap falseForce(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
@@ -276,6 +285,7 @@ Overlap falseForce(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
   Overlap clearest;
   for (Index e = 0; e < el.size(); ++e) {
     if (el.forced[e] || e >= used.forces.size() || !(used.forces.normalForce[e] > 0)) continue;
+    if (!parallelAt(fs, q, el, e, params.thetaParallel)) continue;
     double sI, sJ;
     const double depth =
         el.fallback[e] & (kEndFaceI | kEndFaceJ)

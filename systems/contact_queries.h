@@ -48,8 +48,11 @@
 //                     as its gap is. `centrelines`: the state q's (computed by the detection).
 //                     `ratios` (optional): receives each element's overlap / its zone's p_max.
 // falseForce          over the elements of the set the state q was solved with (`used`) that
-//                     push (R_N > 0 at the last evaluation; forced elements aside: their normal
-//                     is the procedure's, not the fibres'), the fibres' clearance near the
+//                     push (R_N > 0 at the last evaluation) with their fibres parallel at their
+//                     sections (within theta_parallel: N is then the line of centres and g the
+//                     sections' own gap; a crossing's elements carry its force through eq. 10's
+//                     tangent lines with their own sections apart, and forced elements take
+//                     the procedure's normal), the fibres' clearance near the
 //                     element: minus their largest overlap within one element length of its
 //                     sections, each section x_I(s) of I's window against J's closest point in
 //                     J's window, w_I + w_J - |d| along the line between them (support
