@@ -188,10 +188,10 @@ std::string place(const FibreStore& fs, int fI, double sI, int fJ, double sJ) {
 std::string inconsistency(const WorldState& w, const ContactReport& r) {
   const std::string passes = std::to_string(kConsistencyPasses) + " passes with a new detection";
   if (!tooDeep(r))
-    return "false contact force: an element pushes where the fibres stand " +
-           number(r.falseClearance) + " mm (" + number(r.falseClearanceRatio) +
-           " p_max of their pair) clear of each other (" +
-           place(w.fibres, r.falseFibreI, r.falseSI, r.falseFibreJ, r.falseSJ) + "), after " +
+    return "false contact force: an element pushes at " +
+           place(w.fibres, r.falseFibreI, r.falseSI, r.falseFibreJ, r.falseSJ) +
+           " where the fibres near it stand " + number(r.falseClearance) + " mm (" +
+           number(r.falseClearanceRatio) + " p_max of their pair) clear of each other, after " +
            passes;
   return "inconsistent contact set: the fibres overlap by " + number(r.maxOverlapRatio) +
          " p_max of their pair (" +

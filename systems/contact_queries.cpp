@@ -232,13 +232,13 @@ namespace {
 // distance, not the sections'), the crossing is in the window. A pair that touches at s = sI is
 // not searched further (only clearances are asked for: the overlap there is returned).
 double nearestApproach(const FibreStore& fs, const Eigen::VectorXd& q, const CentrelineStore& cl,
-                       Index fI, double sI, Index fJ, double sJ, double& atI, double& atJ) {
+                       Index fI, double sI, Index fJ, double sJ) {
   const double hI = elementLength(fs, fI), hJ = elementLength(fs, fJ);
   const double lo = std::max(0.0, sI - hI), hi = std::min(fs.length[fI], sI + hI);
   const double loJ = std::max(0.0, sJ - hJ), hiJ = std::min(fs.length[fJ], sJ + hJ);
   const double RI = fs.radius[fI], RJ = fs.radius[fJ];
-  const auto overlapAt = [&](double s, double& sOther) {
-    sOther = sJ;
+  const auto overlapAt = [&](double s) {
+    double sOther = sJ;
     closestPointOnFibre(fs, cl, fJ, centrelineAt(fs, cl, fI, s).x, loJ, hiJ, sOther);
     const Section I = contactSection(fs, q, fI, s), J = contactSection(fs, q, fJ, sOther);
     const Vec3 d = I.x0 - J.x0;
@@ -246,11 +246,10 @@ double nearestApproach(const FibreStore& fs, const Eigen::VectorXd& q, const Cen
     const Vec3 n = dist > 0 ? Vec3(d / dist) : Vec3(I.g1.normalized());
     return halfWidth(I, RI, n) + halfWidth(J, RJ, n) - dist;
   };
-  double best = overlapAt(sI, atJ), sOther;
-  atI = sI;
+  double best = overlapAt(sI), atI = sI;
   if (best >= 0) return best;
   const auto keep = [&](double s) {
-    if (const double o = overlapAt(s, sOther); o > best) best = o, atI = s, atJ = sOther;
+    if (const double o = overlapAt(s); o > best) best = o, atI = s;
   };
   constexpr int kSamples = 32;
   for (int k = 0; k <= kSamples; ++k) keep(lo + (hi - lo) * k / kSamples);
@@ -258,8 +257,7 @@ double nearestApproach(const FibreStore& fs, const Eigen::VectorXd& q, const Cen
   double a = std::max(lo, atI - step), b = std::min(hi, atI + step);
   for (int i = 0; i < 40 && b - a > 1e-9 * hI; ++i) {
     const double c = b - phi * (b - a), e = a + phi * (b - a);
-    double sc, se;
-    if (overlapAt(c, sc) > overlapAt(e, se))
+    if (overlapAt(c) > overlapAt(e))
       b = e;
     else
       a = c;
@@ -290,8 +288,8 @@ Overlap falseForce(const FibreStore& fs, const Eigen::VectorXd& q, const Centrel
     const double depth =
         el.fallback[e] & (kEndFaceI | kEndFaceJ)
             ? elementOverlap(fs, q, cl, el, e, params, sI, sJ)
-            : nearestApproach(fs, q, cl, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e], sI, sJ);
-    keepLargest(clearest, used, e, -depth, sI, sJ);
+            : nearestApproach(fs, q, cl, el.fibreI[e], el.sI[e], el.fibreJ[e], el.sJ[e]);
+    keepLargest(clearest, used, e, -depth, el.sI[e], el.sJ[e]);  // where the element pushes
   }
   return clearest;
 }

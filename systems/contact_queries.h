@@ -60,7 +60,8 @@
 //                     element by its face's depth, as trueOverlap. The window, not the element's
 //                     own sections: Gauss elements that straddle a crossing carry its force
 //                     through eq. 10's tangent lines while their own sections stand clear. The
-//                     largest as a multiple of the element's p_max, with where. An element that
+//                     largest as a multiple of the element's p_max, with the element's own
+//                     sections (where it pushes). An element that
 //                     pushes where the fibres near it stand clear carries a force no contact
 //                     makes: its normal N lags behind the line of centres, so g = d . N < 0
 //                     while |d| > w_I + w_J (a normal loop left unsettled after a slip). Mm; 0
