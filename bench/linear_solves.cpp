@@ -17,8 +17,9 @@
 //       [--coarse-segments 8] (schwarz) [--pattern-slack 1.5] (solver.pattern_slack)
 //       [--forcing-max 0,1e-2] (inexact Newton, each value
 //       with each Newton strategy; 0: every solve to the Krylov tolerance)
-//       [--scene FILE [--checkpoint FILE]] (a scene file, from a stopped run's state, instead of
-//       a built-in case)
+//       [--scene FILE [--checkpoint FILE [--checkpoint-scene FILE]]] (a scene file, from a
+//       stopped run's state, instead of a built-in case; the run's own scene when its steps
+//       differ, bench/tangent_cases.h restoreFrom)
 //       [--max-iterations 30] [--cutbacks 8] [--warm 3] [--warm-strategy umfpack] [--csv FILE]
 //
 // Matrices: the tangent Newton assembled after --warm iterations of the first increment (see
@@ -148,10 +149,7 @@ void newton(const Options& o) {
         last = std::chrono::steady_clock::now();
       };
       buildWorld(w);
-      if (!o.checkpoint.empty()) {
-        std::ifstream in(o.checkpoint, std::ios::binary);
-        restoreCheckpoint(w, in);
-      }
+      if (!o.checkpoint.empty()) restoreFrom(w, o);
       int iterations = 0, krylovIterations = 0, fallbacks = 0;
       double wall = 0, assemble = 0, factorise = 0, solve = 0;
       SchwarzTimes schwarz;  // LinearSolveStats::schwarz, summed over the increments

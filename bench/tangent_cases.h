@@ -30,6 +30,7 @@ struct TangentCase {
   bool grip = false;            // yarns: the held ends also hold the director g1 (no free spin)
   std::string scene;            // a scene file instead of a built-in case ("--scene FILE")
   std::string checkpoint;       // its run's resume_state.bin: the tangents from that state on
+  std::string checkpointScene;  // the scene that wrote it, when its steps end or divide otherwise
 };
 
 inline std::vector<std::string> split(const std::string& s) {
@@ -49,8 +50,42 @@ inline bool parseCaseOption(TangentCase& c, const std::string& k, const std::str
   else if (k == "--grip") c.grip = v == "on";
   else if (k == "--scene") c.scene = c.name = v;
   else if (k == "--checkpoint") c.checkpoint = v;
+  else if (k == "--checkpoint-scene") c.checkpointScene = v;
   else return false;
   return true;
+}
+
+// Restores w (built from the case's scene) from c.checkpoint. With c.checkpointScene, the
+// checkpoint was written by a run of that scene, which may differ from w's only in its steps
+// (e.g. a copy of a sample whose last step stops half-way, with half its increments: the same
+// increments up to there): its steps stand in for w's while the state is read, then w's own
+// steps go on from its time. Exits with the error when the checkpoint does not fit.
+inline void restoreFrom(WorldState& w, const TangentCase& c) {
+  std::ifstream in(c.checkpoint, std::ios::binary);
+  std::vector<StepDef> steps = w.scene.steps;
+  if (!c.checkpointScene.empty()) w.scene.steps = loadScene(c.checkpointScene).steps;
+  try {
+    restoreCheckpoint(w, in);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "--checkpoint %s: %s\n", c.checkpoint.c_str(), e.what());
+    std::exit(2);
+  }
+  w.scene.steps = std::move(steps);
+  if (c.checkpointScene.empty()) return;
+  // w's step and increment at its time (a whole number of that step's increments)
+  for (int k = 0; k < int(w.scene.steps.size()); ++k) {
+    const double start = k == 0 ? 0.0 : w.scene.steps[size_t(k) - 1].endTime;
+    const StepDef& st = w.scene.steps[size_t(k)];
+    if (w.time >= st.endTime - 1e-12) continue;
+    const double n = (w.time - start) / (st.endTime - start) * st.increments;
+    if (std::abs(n - std::round(n)) > 1e-6) {
+      std::fprintf(stderr, "--checkpoint-scene: t = %g is not an increment of step %d\n", w.time, k + 1);
+      std::exit(2);
+    }
+    w.step = k, w.increment = int(std::round(n));
+    return;
+  }
+  w.step = int(w.scene.steps.size());
 }
 
 inline SceneDef sceneOf(const TangentCase& c, int increments) {
@@ -232,8 +267,7 @@ inline std::unique_ptr<WorldState> warmWorld(
   for (StepDef& st : w->scene.steps) st.maxIterations = std::max(c.warm, 1), st.maxCutbacks = 0;
   buildWorld(*w);
   if (!c.checkpoint.empty()) {
-    std::ifstream in(c.checkpoint, std::ios::binary);
-    restoreCheckpoint(*w, in);
+    restoreFrom(*w, c);
     std::printf("checkpoint %s: t = %g, step %d, increment %d\n", c.checkpoint.c_str(), w->time,
                 w->step + 1, w->increment);
   }

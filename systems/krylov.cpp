@@ -27,10 +27,10 @@ double residual(const LinearOperator& A, const Eigen::VectorXd& b, const Eigen::
 // Arnoldi step j: z_j = M^-1 v_j, w = A z_j orthogonalised against v_0..v_j (modified
 // Gram-Schmidt) into H(:, j) and v_{j+1}.
 void arnoldi(const LinearOperator& A, const LinearOperator& Minv, int j, GmresWorkspace& ws) {
-  Eigen::VectorXd z;
-  Minv(ws.V.col(j), z);
-  ws.Z.col(j) = z;
-  A(z, ws.w);
+  ws.v = ws.V.col(j);  // the operators take vectors: kept ones, not a fresh one per step
+  Minv(ws.v, ws.z);
+  ws.Z.col(j) = ws.z;
+  A(ws.z, ws.w);
   for (int i = 0; i <= j; ++i) {
     ws.H(i, j) = ws.V.col(i).dot(ws.w);
     ws.w -= ws.H(i, j) * ws.V.col(i);

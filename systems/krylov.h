@@ -39,6 +39,7 @@ struct GmresWorkspace {
   Eigen::MatrixXd H;         // (m + 1) x m, Hessenberg, rotated to upper triangular
   Eigen::VectorXd g, c, s;   // rotated right-hand side, Givens cosines and sines
   Eigen::VectorXd r, w;      // scratch of size n
+  Eigen::VectorXd v, z;      // v_j and M^-1 v_j of the current Arnoldi step (size n)
 };
 
 // Solves A x = b from the initial guess x (resized to b's size and zeroed when its size

@@ -1,8 +1,13 @@
 #include "systems/schwarz_preconditioner.h"
 
+#include "core/sparse_room.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/UmfPackSupport>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 #include <chrono>
 #include <utility>
@@ -33,31 +38,11 @@ struct FibreBlock {
   std::vector<int> pivots;
 };
 
-// The column blocks `parts` (each `rows` rows, compressed) side by side as one matrix.
-void joinColumns(const std::vector<SparseMatrix>& parts, Index rows, SparseMatrix& out) {
-  Index nnz = 0, cols = 0;
-  for (const SparseMatrix& p : parts) nnz += p.nonZeros(), cols += p.cols();
-  out.resize(rows, cols);
-  out.resizeNonZeros(nnz);
-  Index at = 0, column = 0;
-  for (const SparseMatrix& p : parts)
-    for (Index j = 0; j < p.cols(); ++j, ++column) {
-      out.outerIndexPtr()[column] = int(at);
-      for (SparseMatrix::InnerIterator it(p, j); it; ++it, ++at)
-        out.innerIndexPtr()[at] = int(it.row()), out.valuePtr()[at] = it.value();
-    }
-  out.outerIndexPtr()[cols] = int(at);
-}
-
-// The prune predicate: keep the entries that are not exactly 0.
-bool nonZero(Index, Index, double v) { return v != 0; }
-
 // out = A without the entries that are exactly 0 (one pass, the order of the rest kept).
 void withoutZeros(const SparseMatrix& A, SparseMatrix& out) {
   Index nnz = 0;
   for (Index k = 0; k < A.nonZeros(); ++k) nnz += A.valuePtr()[k] != 0;
-  out.resize(A.rows(), A.cols());
-  out.resizeNonZeros(nnz);
+  roomFor(out, A.rows(), A.cols(), nnz);
   Index at = 0;
   for (Index j = 0; j < A.outerSize(); ++j) {
     out.outerIndexPtr()[j] = int(at);
@@ -67,7 +52,111 @@ void withoutZeros(const SparseMatrix& A, SparseMatrix& out) {
   out.outerIndexPtr()[A.outerSize()] = int(at);
 }
 
+// out = the full matrix whose upper triangle U holds (upper storage, as LinearSystem keeps a
+// symmetric K), without its zeros; rows ascending in each column. `cursor`: scratch.
+void fullWithoutZeros(const SparseMatrix& U, SparseMatrix& out, std::vector<int>& cursor) {
+  const Index n = U.cols();
+  cursor.assign(size_t(n) + 1, 0);  // first: the entries of each column
+  for (Index j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(U, j); it; ++it)
+      if (it.value() != 0 && it.row() <= j) ++cursor[size_t(j)], cursor[size_t(it.row())] += it.row() < j;
+  Index nnz = 0;
+  for (Index j = 0; j < n; ++j) nnz += cursor[size_t(j)];
+  roomFor(out, n, n, nnz);
+  int* outer = out.outerIndexPtr();
+  outer[0] = 0;
+  for (Index j = 0; j < n; ++j) outer[j + 1] = outer[j] + cursor[size_t(j)];
+  // column j: its upper part (rows <= j, ascending), then the mirrored rows > j in column order
+  for (Index j = 0; j < n; ++j) {
+    int at = outer[j];
+    for (SparseMatrix::InnerIterator it(U, j); it; ++it)
+      if (it.value() != 0 && it.row() <= j) out.innerIndexPtr()[at] = int(it.row()), out.valuePtr()[at++] = it.value();
+    cursor[size_t(j)] = at;
+  }
+  for (Index j = 0; j < n; ++j)
+    for (SparseMatrix::InnerIterator it(U, j); it; ++it)
+      if (it.value() != 0 && it.row() < j) {
+        int& at = cursor[size_t(it.row())];
+        out.innerIndexPtr()[at] = int(j), out.valuePtr()[at++] = it.value();
+      }
+}
+
+// One fibre's coarse columns, compressed: per column l (of `per`) its rows and values in
+// rows/values[start[l] .. start[l + 1]). Kept per fibre from build to build.
+struct Columns {
+  std::vector<int> start, rows;
+  std::vector<double> values;
+};
+
+// A sparse accumulator of rows, each `width` wide: the slot of row i, the rows in use and
+// their sums (slot-major). Kept per thread.
+struct Accumulator {
+  std::vector<int> slot;       // per row: its slot, -1 when unused
+  std::vector<int> used;       // rows in use, in the order they came
+  std::vector<double> sums;    // width per slot
+  int width = 0;
+
+  void prepare(Index rows, int w) {
+    if (Index(slot.size()) != rows) slot.assign(size_t(rows), -1);
+    width = w;
+  }
+  double* row(int i) {
+    int& s = slot[size_t(i)];
+    if (s < 0) {
+      s = int(used.size());
+      used.push_back(i);
+      if (sums.size() < used.size() * size_t(width)) sums.resize(2 * used.size() * size_t(width));
+      std::fill_n(sums.begin() + std::ptrdiff_t(s) * width, width, 0.0);
+    }
+    return sums.data() + std::ptrdiff_t(s) * width;
+  }
+  // The used rows in ascending order (their sums keep their slots).
+  void sortUsed() { std::sort(used.begin(), used.end()); }
+  // out's columns l = 0..width-1: the non-zero sums of the used rows, ascending; then empty.
+  void emit(Columns& out) {
+    out.start.assign(size_t(width) + 1, 0);
+    out.rows.clear(), out.values.clear();
+    for (int l = 0; l < width; ++l) {
+      for (int i : used) {
+        const double v = sums[size_t(slot[size_t(i)]) * size_t(width) + size_t(l)];
+        if (v != 0) out.rows.push_back(i), out.values.push_back(v);
+      }
+      out.start[size_t(l) + 1] = int(out.rows.size());
+    }
+    for (int i : used) slot[size_t(i)] = -1;
+    used.clear();
+  }
+};
+
+struct Scratch {
+  Accumulator kphi, coarse;  // rows of K Phi (equations); rows of A_c (coarse unknowns)
+};
+
+// The blocks `parts` (each `per` columns of `rows` rows) side by side as one compressed matrix
+// `out` (rows x parts * per); a column l of part f with `unit[f * per + l]` gets 1 on its diagonal.
+void joinColumns(const std::vector<Columns>& parts, Index rows, Index per,
+                 const std::vector<char>* unit, SparseMatrix& out) {
+  Index nnz = 0;
+  for (const Columns& p : parts) nnz += Index(p.rows.size());
+  if (unit) nnz += std::count(unit->begin(), unit->end(), char(1));
+  roomFor(out, rows, Index(parts.size()) * per, nnz);
+  Index at = 0, column = 0;
+  for (const Columns& p : parts)
+    for (Index l = 0; l < per; ++l, ++column) {
+      out.outerIndexPtr()[column] = int(at);
+      if (unit && (*unit)[size_t(column)]) {
+        out.innerIndexPtr()[at] = int(column), out.valuePtr()[at++] = 1;
+        continue;
+      }
+      for (int k = p.start[size_t(l)]; k < p.start[size_t(l) + 1]; ++k, ++at)
+        out.innerIndexPtr()[at] = p.rows[size_t(k)], out.valuePtr()[at] = p.values[size_t(k)];
+    }
+  out.outerIndexPtr()[column] = int(at);
+}
+
 }  // namespace
+
+using RowMajorMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 struct SchwarzPreconditioner::Impl {
   const LinearSystem* ls = nullptr;
@@ -76,16 +165,23 @@ struct SchwarzPreconditioner::Impl {
   // first tangents are exact zeros); dropping them changes no product
   SparseMatrix Kn;
   std::vector<FibreBlock> blocks;    // per fibre
-  SparseMatrix Phi, Ac;              // coarse basis (equations x coarse unknowns), Phi^T K Phi
+  RowMajorMatrix Phi;                // coarse basis (equations x coarse unknowns), by rows
+  std::vector<char> emptyColumn;     // per coarse unknown: Phi's column is empty (DOFs held)
+  SparseMatrix Ac;                   // Phi^T K Phi
   SparseMatrix KPhi;                 // K Phi (equations x coarse unknowns), kept for apply()
   Index perFibre = 0;                // coarse unknowns per fibre (Phi's columns of a fibre)
+  std::vector<Columns> kphiParts, acParts;  // per fibre: its columns of K Phi and of A_c
+  tbb::enumerable_thread_specific<Scratch> scratch;
   Eigen::UmfPackLU<SparseMatrix> coarse;
   std::vector<int> acOuter, acInner;  // the pattern of Ac that `coarse` analysed
+  std::vector<int> cursor;           // scratch of copyOperator
   mutable SchwarzTimes times;  // apply() adds its own
 
+  void copyOperator(const LinearSystem& system);
   const SparseMatrix& K() const { return Kn; }
   bool factoriseBlocks(const FibreStore& fibres, std::string& message);
   void basis(const FibreStore& fibres, int segments);
+  void coarseColumns(Index f, Index first, Index n, Scratch& s);
   void coarseMatrix();
   bool factoriseCoarse(std::string& message);
   void applyBlocks(Eigen::VectorXd& y) const;
@@ -131,60 +227,90 @@ bool SchwarzPreconditioner::Impl::factoriseBlocks(const FibreStore& fibres, std:
   return true;
 }
 
-// Phi of the header: per fibre, hats over `segments` pieces of its node index, times the three
-// translations of x0 and the three rotations of the directors, without explicit zeros (A_c's
-// pattern follows K's non-zero values anyway, and is analysed again when it changes).
+// Phi of the header, row by row (an equation's row: per hat c over its node, the translation
+// column of its x0 component, or the two rotation columns whose e_i x g_a has its component),
+// without zeros; per fibre, hats over `segments` pieces of its node index, times the three
+// translations of x0 and the three rotations of the directors.
 void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) {
-  std::vector<Eigen::Triplet<double>> t;
-  const Index columnsPerFibre = perFibre = Index(segments + 1) * 6;
-  for (Index f = 0; f < fibres.fibres(); ++f) {
-    const Index nodes = fibres.nodeCount[f];
-    for (Index k = 0; k < nodes; ++k) {
-      const Index node = fibres.firstNode[f] + k;
-      const double at = double(k) * segments / double(nodes - 1);
-      const Vec3 g[2] = {g1Of(fibres.q, node), g2Of(fibres.q, node)};
-      for (int c = std::max(0, int(at)); c <= std::min(segments, int(at) + 1); ++c) {
-        const double phi = 1 - std::abs(at - c);
-        if (!(phi > 0)) continue;
-        const Index column = f * columnsPerFibre + Index(c) * 6;
-        auto add = [&](int dof, Index col, double v) {
-          const Index e = ls->equation[kNodeDofs * node + dof];
-          if (e >= 0) t.emplace_back(e, col, v);
-        };
+  const Index per = perFibre = Index(segments + 1) * 6, n = ls->freeCount;
+  const Index nc = fibres.fibres() * per;
+  // Per node at most 2 hats x (3 translation + 6 x 2 rotation entries).
+  Index most = 0;
+  for (Index f = 0; f < fibres.fibres(); ++f) most += 30 * fibres.nodeCount[f];
+  roomFor(Phi, n, nc, most);
+  emptyColumn.assign(size_t(nc), 1);
+  std::pair<int, double> entries[3];  // of one hat in one equation's row
+  Index at = 0;
+  for (Index e = 0; e < n; ++e) {  // rows in equation order (numberEquations: DOF order)
+    const Index dof = ls->dofOf[size_t(e)], node = dof / kNodeDofs;
+    const Index f = fibres.nodeFibre[size_t(node)], k = node - fibres.firstNode[f];
+    const int d = int(dof % kNodeDofs);
+    const double s = double(k) * segments / double(fibres.nodeCount[f] - 1);
+    Phi.outerIndexPtr()[e] = int(at);
+    for (int c = std::max(0, int(s)); c <= std::min(segments, int(s) + 1); ++c) {
+      const double phi = 1 - std::abs(s - c);
+      if (!(phi > 0)) continue;
+      const Index column = f * per + Index(c) * 6;
+      int count = 0;
+      if (d < 3) {
+        entries[count++] = {int(column + d), phi};
+      } else {  // component r of director a: (e_i x g_a)_r for the rotations i != r
+        const Vec3 g = d < 6 ? g1Of(fibres.q, node) : g2Of(fibres.q, node);
+        const int r = (d - 3) % 3;
         for (int i = 0; i < 3; ++i) {
-          add(i, column + i, phi);
-          for (int a = 0; a < 2; ++a) {
-            const Vec3 dg = Vec3::Unit(i).cross(g[a]) * phi;
-            for (int r = 0; r < 3; ++r) add(3 + 3 * a + r, column + 3 + i, dg(r));
-          }
+          const double v = Vec3::Unit(i).cross(g)(r) * phi;
+          if (v != 0) entries[count++] = {int(column + 3 + i), v};
         }
+      }
+      for (int m = 0; m < count; ++m) {
+        Phi.innerIndexPtr()[at] = entries[m].first, Phi.valuePtr()[at++] = entries[m].second;
+        emptyColumn[size_t(entries[m].first)] = 0;
       }
     }
   }
-  Phi.resize(ls->freeCount, fibres.fibres() * columnsPerFibre);
-  Phi.setFromTriplets(t.begin(), t.end());
-  Phi.prune(nonZero);
+  Phi.outerIndexPtr()[n] = int(at);
+  Phi.resizeNonZeros(at);
 }
 
-// A_c = Phi^T K Phi, one fibre's coarse columns at a time (tbb over the fibres: Phi's columns
-// of fibre f are contiguous, so A_c's columns are the blocks Phi^T (K Phi_f) side by side, each
-// computed on its own: bitwise the same for any thread count). A coarse unknown whose column of
-// Phi is empty (all its DOFs held) gets 1 on the diagonal.
+// Fibre f's columns of K Phi and A_c = Phi^T K Phi (its equations first .. first + n - 1, which
+// are the rows of its columns of Phi): (K Phi)(i, l) = sum_j K(i, j) Phi(j, l) over its
+// equations j in order, then A_c(a, l) = sum_i Phi(i, a) (K Phi)(i, l) over the rows i of K Phi
+// in ascending order. Sequential within the fibre: the same sums for any thread count.
+void SchwarzPreconditioner::Impl::coarseColumns(Index f, Index first, Index n, Scratch& s) {
+  const int per = int(perFibre);
+  const Index base = f * perFibre;
+  s.kphi.prepare(Kn.rows(), per);
+  s.coarse.prepare(Phi.cols(), per);
+  for (Index j = first; j < first + n; ++j)
+    for (RowMajorMatrix::InnerIterator p(Phi, j); p; ++p) {
+      const int l = int(p.col() - base);
+      for (SparseMatrix::InnerIterator k(Kn, j); k; ++k) s.kphi.row(int(k.row()))[l] += k.value() * p.value();
+    }
+  s.kphi.sortUsed();
+  for (int i : s.kphi.used) {
+    const double* kp = s.kphi.sums.data() + size_t(s.kphi.slot[size_t(i)]) * size_t(per);
+    for (RowMajorMatrix::InnerIterator p(Phi, i); p; ++p) {
+      double* a = s.coarse.row(int(p.col()));
+      for (int l = 0; l < per; ++l) a[l] += p.value() * kp[l];
+    }
+  }
+  s.coarse.sortUsed();
+  s.kphi.emit(kphiParts[size_t(f)]);
+  s.coarse.emit(acParts[size_t(f)]);
+}
+
+// A_c and K Phi, fibre by fibre (tbb over the fibres: each computes its own columns,
+// coarseColumns), then joined. A coarse unknown whose column of Phi is empty (all its DOFs held)
+// gets 1 on the diagonal.
 void SchwarzPreconditioner::Impl::coarseMatrix() {
-  const SparseMatrix& A = K();
-  const SparseMatrix PhiT = Phi.transpose();
-  const Index nc = Phi.cols(), per = perFibre;
-  std::vector<SparseMatrix> parts(size_t(nc / per)), kphi(parts.size());
-  tbb::parallel_for(size_t(0), parts.size(), [&](size_t f) {
-    kphi[f] = A * Phi.middleCols(Index(f) * per, per);
-    parts[f] = PhiT * kphi[f];
+  const Index nf = Index(blocks.size());
+  kphiParts.resize(size_t(nf)), acParts.resize(size_t(nf));
+  tbb::parallel_for(Index(0), nf, [&](Index f) {
+    const FibreBlock& b = blocks[size_t(f)];
+    coarseColumns(f, b.first, b.n, scratch.local());
   });
-  joinColumns(kphi, A.rows(), KPhi);
-  joinColumns(parts, nc, Ac);
-  Ac.prune(nonZero);  // Phi's explicit zeros give zeros
-  for (Index j = 0; j < nc; ++j)
-    if (Phi.outerIndexPtr()[j + 1] == Phi.outerIndexPtr()[j]) Ac.coeffRef(j, j) = 1;
-  Ac.makeCompressed();
+  joinColumns(kphiParts, Kn.rows(), perFibre, nullptr, KPhi);
+  joinColumns(acParts, Phi.cols(), perFibre, &emptyColumn, Ac);
 }
 
 // A_c's LU; UMFPACK's pattern analysis is redone only when A_c's pattern changes.
@@ -192,14 +318,17 @@ bool SchwarzPreconditioner::Impl::factoriseCoarse(std::string& message) {
   auto t0 = std::chrono::steady_clock::now();
   coarseMatrix();
   times.coarseMatrix += since(t0);
-  const std::vector<int> outer(Ac.outerIndexPtr(), Ac.outerIndexPtr() + Ac.cols() + 1),
-      inner(Ac.innerIndexPtr(), Ac.innerIndexPtr() + Ac.nonZeros());
-  if (outer != acOuter || inner != acInner) {
+  const int* outer = Ac.outerIndexPtr();
+  const int* inner = Ac.innerIndexPtr();
+  const size_t cols = size_t(Ac.cols()), nnz = size_t(Ac.nonZeros());
+  if (acOuter.size() != cols + 1 || acInner.size() != nnz ||
+      !std::equal(outer, outer + cols + 1, acOuter.begin()) ||
+      !std::equal(inner, inner + nnz, acInner.begin())) {
     coarse.umfpackControl()(UMFPACK_IRSTEP) = 0;  // a preconditioner: no iterative refinement
     t0 = std::chrono::steady_clock::now();
     coarse.analyzePattern(Ac);
     times.coarseAnalyse += since(t0);
-    acOuter = outer, acInner = inner;
+    acOuter.assign(outer, outer + cols + 1), acInner.assign(inner, inner + nnz);
   }
   coarse.factorize(Ac);
   if (coarse.info() != Eigen::Success) {
@@ -224,16 +353,20 @@ void SchwarzPreconditioner::Impl::applyBlocks(Eigen::VectorXd& y) const {
 SchwarzPreconditioner::SchwarzPreconditioner() : impl_(std::make_unique<Impl>()) {}
 SchwarzPreconditioner::~SchwarzPreconditioner() = default;
 
+// Kn = the full K of `system` without its explicit zeros; `ls` points to it.
+void SchwarzPreconditioner::Impl::copyOperator(const LinearSystem& system) {
+  ls = &system;
+  if (system.symmetric) {
+    fullWithoutZeros(system.K, Kn, cursor);
+  } else {
+    withoutZeros(system.K, Kn);
+  }
+}
+
 bool SchwarzPreconditioner::build(const LinearSystem& ls, const FibreStore& fibres, int segments,
                                   std::string& message) {
   Impl& m = *impl_;
-  m.ls = &ls;
-  if (ls.symmetric) {
-    m.Kn = ls.K.selfadjointView<Eigen::Upper>();
-    m.Kn.prune(nonZero);
-  } else {
-    withoutZeros(ls.K, m.Kn);
-  }
+  m.copyOperator(ls);
   auto t0 = std::chrono::steady_clock::now();
   const bool blocks = m.factoriseBlocks(fibres, message);
   m.times.local += since(t0);

@@ -16,8 +16,15 @@
 //     the translations dx0 = e_i phi_c and the rotations of the section dg_a = (e_i x g_a) phi_c
 //     (i = 1..3); A_c = Phi^T K Phi, LU by UMFPACK (its pattern analysed again whenever A_c's
 //     non-zeros move).
+//     K Phi and A_c are formed fibre by fibre from Phi's rows (a fibre's columns of Phi have
+//     its own equations for rows): (K Phi)(:, l) = sum_j K(:, j) Phi(j, l) over the fibre's
+//     equations j, A_c(:, l) = sum_i Phi(i, :)^T (K Phi)(i, l), in sparse accumulators kept
+//     per thread (3.3x faster than Eigen's sparse products on a 37-fibre bundle, docs/RESULTS.md
+//     "Storage kept between Newton iterations").
 //   apply: z = A_c^-1 Phi^T v, y_c = Phi z;  y = y_c + B^-1 (v - (K Phi) z)   (multiplicative
 //     two-level; K Phi is kept from forming A_c).
+//   Storage (K without zeros, Phi, K Phi, A_c, the accumulators) is kept from build to build
+//   and grows only when it must (core/sparse_room.h).
 //   Every product uses K without its explicit zeros: K's fixed pattern holds every candidate
 //   contact element of the proximity zones, and most carry no stiffness (77% of the entries of
 //   the 250-fibre yarn's first tangents are exact zeros); dropping them costs one pass over K
@@ -28,8 +35,8 @@
 // iterations where 15 took 69-70.
 // Threading (tbb::parallel_for in the caller's arena), bitwise the same for any thread count:
 // the fibre blocks are factorised and applied in parallel, each writing only its own fibre's
-// equations; A_c is formed fibre by fibre (A_c's columns of fibre f = Phi^T (K Phi_f), each
-// block computed as the whole product would). The coarse LU, its solves and the products K v
+// equations; A_c and K Phi are formed fibre by fibre, each fibre's columns summed in a fixed
+// order by one thread (its accumulator's, whichever thread that is). The coarse LU, its solves and the products K v
 // are sequential (a parallel product by rows was measured: no gain on 2 threads once the copy of
 // K by rows is paid, docs/RESULTS.md "Inexact Newton").
 // Errors: build() returns false with a message when a fibre block or A_c is singular.

@@ -1,5 +1,7 @@
 #include "systems/sparse_pattern.h"
 
+#include "core/sparse_room.h"
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -53,21 +55,31 @@ void buildPattern(const FibreStore& fs, const CliqueList& cl, LinearSystem& ls) 
   nodeAdjacency(fs.nodes(), cl, start, adj);
 
   // Columns in equation order; rows: free DOFs of adjacent nodes (upper part if symmetric).
-  std::vector<int> outer(ls.freeCount + 1, 0), inner;
+  // Counted, then written into K's own storage (core/sparse_room.h), all values 0.
+  const auto forEachRow = [&](Index n, Index J, auto&& row) {
+    for (Index k = start[n]; k < start[n + 1]; ++k)
+      for (int r = 0; r < kNodeDofs; ++r) {
+        const Index I = ls.equation[kNodeDofs * adj[k] + r];
+        if (I >= 0 && (!ls.symmetric || I <= J)) row(I);
+      }
+  };
+  Index nnz = 0;
+  for (Index n = 0; n < fs.nodes(); ++n)
+    for (int c = 0; c < kNodeDofs; ++c)
+      if (const Index J = ls.equation[kNodeDofs * n + c]; J >= 0) forEachRow(n, J, [&](Index) { ++nnz; });
+  roomFor(ls.K, ls.freeCount, ls.freeCount, nnz);
+  int* outer = ls.K.outerIndexPtr();
+  int* inner = ls.K.innerIndexPtr();
+  Index at = 0;
+  outer[0] = 0;
   for (Index n = 0; n < fs.nodes(); ++n)
     for (int c = 0; c < kNodeDofs; ++c) {
       const Index J = ls.equation[kNodeDofs * n + c];
       if (J < 0) continue;
-      for (Index k = start[n]; k < start[n + 1]; ++k)
-        for (int r = 0; r < kNodeDofs; ++r) {
-          const Index I = ls.equation[kNodeDofs * adj[k] + r];
-          if (I >= 0 && (!ls.symmetric || I <= J)) inner.push_back(I);
-        }
-      outer[J + 1] = int(inner.size());
+      forEachRow(n, J, [&](Index I) { inner[at++] = int(I); });
+      outer[J + 1] = int(at);
     }
-  std::vector<double> zeros(inner.size(), 0.0);
-  ls.K = Eigen::Map<const SparseMatrix>(ls.freeCount, ls.freeCount, Index(inner.size()),
-                                        outer.data(), inner.data(), zeros.data());
+  std::fill_n(ls.K.valuePtr(), nnz, 0.0);
 
   ls.diagonal.resize(ls.freeCount);
   for (Index J = 0; J < ls.freeCount; ++J) {
@@ -81,7 +93,9 @@ void buildPattern(const FibreStore& fs, const CliqueList& cl, LinearSystem& ls) 
     const Index n = kNodeDofs * (cl.first[c + 1] - cl.first[c]);
     ls.cliqueFirst[c + 1] = ls.cliqueFirst[c] + n * n;
   }
-  ls.positions.resize(ls.cliqueFirst.back());
+  const size_t entries = size_t(ls.cliqueFirst.back());  // room kept, as K's (core/sparse_room.h)
+  if (ls.positions.capacity() < entries) ls.positions.reserve(entries + entries / 4);
+  ls.positions.resize(entries);
   const int* op = ls.K.outerIndexPtr();
   const int* ip = ls.K.innerIndexPtr();
   tbb::parallel_for(Index(0), cl.size(), [&](Index c) {

@@ -499,10 +499,13 @@ Eigen::VectorXd denseSchwarz(const LinearSystem& ls, const FibreStore& fs, int s
 }
 
 TEST_CASE("the Schwarz preconditioner applies the two levels of its header (dense reference)") {
-  for (double mu : {0.0, 0.1}) {
+  // Fixed normals and no friction: K symmetric, kept as its upper triangle.
+  using enum NormalUpdate;
+  for (const auto& [mu, update] : {std::pair(0.0, Loop), std::pair(0.0, Newton), std::pair(0.1, Newton)}) {
     CAPTURE(mu);
-    auto w = squeezedBundle(mu);
+    auto w = squeezedBundle(mu, update);
     const LinearSystem& ls = w->system;
+    CHECK(ls.symmetric == (update == Loop));
     const Eigen::VectorXd v = randomVector(ls.freeCount, 5);
     for (int segments : {1, 4}) {
       CAPTURE(segments);
@@ -549,6 +552,25 @@ TEST_CASE("the Schwarz preconditioner ignores K's explicit zeros and times its a
   // the same products and the same A_c pattern, hence the same factors: bitwise equal
   CHECK((Kv[0] - Kv[1]).lpNorm<Eigen::Infinity>() == 0);
   CHECK((y[0] - y[1]).lpNorm<Eigen::Infinity>() == 0);
+  // One preconditioner built again and again on other tangents (its storage is kept and grows,
+  // core/sparse_room.h; frictionless with fixed normals: K symmetric, in upper storage): each
+  // build applies and multiplies as a fresh one does.
+  auto frictionless = squeezedBundle(0, NormalUpdate::Loop);
+  const LinearSystem& sym = frictionless->system;
+  REQUIRE(sym.symmetric);
+  SchwarzPreconditioner again;
+  std::string message;
+  for (const LinearSystem* system : {&sym, static_cast<const LinearSystem*>(&padded), &ls, &sym}) {
+    const FibreStore& fibres = system == &sym ? frictionless->fibres : w->fibres;
+    SchwarzPreconditioner fresh;
+    REQUIRE(fresh.build(*system, fibres, 4, message));
+    REQUIRE(again.build(*system, fibres, 4, message));
+    Eigen::VectorXd y0, y1, Kv0, Kv1;
+    fresh.apply(v, y0), again.apply(v, y1);
+    fresh.product(v, Kv0), again.product(v, Kv1);
+    CHECK(y1 == y0);
+    CHECK(Kv1 == Kv0);
+  }
 }
 
 TEST_CASE("the linear solver's spans appear in the trace with their counts, which the step report gives") {
