@@ -229,8 +229,8 @@ bool SchwarzPreconditioner::Impl::factoriseBlocks(const FibreStore& fibres, std:
 
 // Phi of the header, row by row (an equation's row: per hat c over its node, the translation
 // column of its x0 component, or the two rotation columns whose e_i x g_a has its component),
-// without zeros; per fibre, hats over `segments` pieces of its node index, times the three
-// translations of x0 and the three rotations of the directors.
+// without zeros; per fibre, hats over `segments` pieces of its node index (at most its nodes
+// less one), times the three translations of x0 and the three rotations of the directors.
 void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) {
   const Index per = perFibre = Index(segments + 1) * 6, n = ls->freeCount;
   const Index nc = fibres.fibres() * per;
@@ -245,9 +245,12 @@ void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) 
     const Index dof = ls->dofOf[size_t(e)], node = dof / kNodeDofs;
     const Index f = fibres.nodeFibre[size_t(node)], k = node - fibres.firstNode[f];
     const int d = int(dof % kNodeDofs);
-    const double s = double(k) * segments / double(fibres.nodeCount[f] - 1);
+    // at most one piece per element interval of nodes: with more, two hats could share their
+    // only node and A_c would be singular; the fibre's hats beyond stay empty (unit diagonal)
+    const int pieces = int(std::min<Index>(segments, fibres.nodeCount[f] - 1));
+    const double s = double(k) * pieces / double(fibres.nodeCount[f] - 1);
     Phi.outerIndexPtr()[e] = int(at);
-    for (int c = std::max(0, int(s)); c <= std::min(segments, int(s) + 1); ++c) {
+    for (int c = std::max(0, int(s)); c <= std::min(pieces, int(s) + 1); ++c) {
       const double phi = 1 - std::abs(s - c);
       if (!(phi > 0)) continue;
       const Index column = f * per + Index(c) * 6;

@@ -423,6 +423,13 @@ TEST_CASE("the Schwarz strategy: its preconditioner alone, bitwise across thread
     });
   }
   CHECK(y[0] == y[1]);
+  // More pieces than a fibre has node intervals (50 on fibres of 21 nodes) is not a singular
+  // coarse level (two hats would share their only node): solved by GMRES, no fallback.
+  LinearSolver fine;
+  fine.setKrylov({.coarseSegments = 50});
+  CHECK(solveWith(LinearStrategy::Schwarz, ls, b, fine, &w->fibres) <= KrylovSettings{}.tolerance);
+  CHECK(fine.stats().fallbacks == 0);
+  CHECK(fine.stats().krylovIterations > 1);
   // The preconditioner does the work: with it GMRES(40) reaches 1e-8 in under 100 iterations,
   // without it (M = I) not in 200.
   LinearSolver solver;
@@ -464,8 +471,9 @@ Eigen::VectorXd denseSchwarz(const LinearSystem& ls, const FibreStore& fs, int s
     for (Index k = 0; k < fs.nodeCount[f]; ++k) {
       const Index node = fs.firstNode[f] + k;
       const auto eq = [&](int dof) { return ls.equation[size_t(kNodeDofs * node + dof)]; };
-      for (int c = 0; c <= segments; ++c) {
-        const double phi = std::max(0.0, 1 - std::abs(double(k) * segments / double(fs.nodeCount[f] - 1) - c));
+      const Index pieces = std::min<Index>(segments, fs.nodeCount[f] - 1);  // hats beyond: empty
+      for (int c = 0; c <= pieces; ++c) {
+        const double phi = std::max(0.0, 1 - std::abs(double(k) * pieces / double(fs.nodeCount[f] - 1) - c));
         for (int i = 0; i < 3; ++i) {
           const Index col = f * per + 6 * c;
           if (eq(i) >= 0) Phi(eq(i), col + i) = phi;
@@ -507,7 +515,8 @@ TEST_CASE("the Schwarz preconditioner applies the two levels of its header (dens
     const LinearSystem& ls = w->system;
     CHECK(ls.symmetric == (update == Loop));
     const Eigen::VectorXd v = randomVector(ls.freeCount, 5);
-    for (int segments : {1, 4}) {
+    // 50 pieces on fibres of 21 nodes: 20 pieces, the hats beyond empty
+    for (int segments : {1, 4, 50}) {
       CAPTURE(segments);
       SchwarzPreconditioner p;
       std::string message;
