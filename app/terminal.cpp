@@ -351,7 +351,11 @@ std::string solverLine(const SceneDef& s) {
                : std::string(", on K's stored pattern");
   const bool schwarz = v.strategy == LinearStrategy::Schwarz || v.strategy == LinearStrategy::Auto;
   if (schwarz)
-    out += format(", schwarz's coarse level of %d segments per fibre", v.krylov.coarseSegments);
+    out += format(", schwarz's coarse level of %d segments per fibre, rotations %s",
+                  v.krylov.coarseSegments,
+                  v.krylov.coarseRotations == CoarseRotations::On    ? "on"
+                  : v.krylov.coarseRotations == CoarseRotations::Off ? "off"
+                                                                     : "auto");
   const bool krylov = v.strategy == LinearStrategy::Krylov || v.strategy == LinearStrategy::KrylovLu ||
                       schwarz || v.krylov.blrTolerance > 0;
   if (krylov)

@@ -14,7 +14,8 @@
 //       its explicit zeros, analysis included; any ending in -stored: that one with
 //       solver.pattern_slack 0, on K's stored pattern with its zeros)
 //       [--newton INCREMENTS] [--newton-strategy krylov,umfpack] [--refactor-above 40]
-//       [--coarse-segments 8] (schwarz) [--pattern-slack 1.5] (solver.pattern_slack)
+//       [--coarse-segments 8] [--coarse-rotations auto|on|off] (schwarz)
+//       [--krylov-restart 40] [--krylov-max 200] (GMRES: basis per cycle, iterations per solve) [--pattern-slack 1.5] (solver.pattern_slack)
 //       [--forcing-max 0,1e-2] (inexact Newton, each value
 //       with each Newton strategy; 0: every solve to the Krylov tolerance)
 //       [--scene FILE [--checkpoint FILE [--checkpoint-scene FILE]]] (a scene file, from a
@@ -68,6 +69,8 @@ struct Options : TangentCase {
   int newton = 0;
   int refactorAbove = KrylovSettings{}.refactorAbove;
   int coarseSegments = KrylovSettings{}.coarseSegments;
+  std::string coarseRotations = "auto";
+  int krylovRestart = KrylovSettings{}.restart, krylovMax = KrylovSettings{}.maxIterations;
   double patternSlack = KrylovSettings{}.patternSlack;
   int maxIterations = 30;  // Newton iterations per attempt
   int cutbacks = 8;        // per increment
@@ -127,7 +130,12 @@ void newton(const Options& o) {
       w.scene = sceneOf(o, 5);
       w.scene.solver.krylov.refactorAbove = o.refactorAbove;
       w.scene.solver.krylov.coarseSegments = o.coarseSegments;
+      w.scene.solver.krylov.coarseRotations = o.coarseRotations == "on"    ? CoarseRotations::On
+                                              : o.coarseRotations == "off" ? CoarseRotations::Off
+                                                                           : CoarseRotations::Auto;
       w.scene.solver.krylov.patternSlack = o.patternSlack;
+      w.scene.solver.krylov.restart = o.krylovRestart;
+      w.scene.solver.krylov.maxIterations = o.krylovMax;
       w.scene.solver.krylov.forcingMax = forcing;
       std::printf("  %s, forcing term <= %g\n", name.c_str(), forcing);
       for (StepDef& st : w.scene.steps) st.maxIterations = o.maxIterations, st.maxCutbacks = o.cutbacks;
@@ -177,11 +185,12 @@ void newton(const Options& o) {
                   krylovIterations, fallbacks, peakGiB());
       if (schwarz.local + schwarz.coarse > 0)
         std::printf("  thr %d %-8s Schwarz per iteration: build blocks %.3f coarse %.3f (Phi and A_c %.3f, analysis %.3f); in GMRES coarse "
-                    "solves %.3f, K y_c %.3f, block solves %.3f, K v %.3f s\n", threads, name.c_str(),
+                    "solves %.3f, K y_c %.3f, block solves %.3f, K v %.3f s; rotations off in %d of %d builds\n", threads, name.c_str(),
                     schwarz.local / iterations, schwarz.coarse / iterations,
                     schwarz.coarseMatrix / iterations, schwarz.coarseAnalyse / iterations,
                     schwarz.coarseSolve / iterations, schwarz.product / iterations,
-                    schwarz.blockSolve / iterations, schwarz.operatorProduct / iterations);
+                    schwarz.blockSolve / iterations, schwarz.operatorProduct / iterations,
+                    schwarz.withoutRotations, schwarz.builds);
       if (firstQ.size() == 0) firstQ = w.fibres.q;
       else if (firstQ.size() == w.fibres.q.size())
         std::printf("  max |q - q of the first strategy| = %.2e\n",
@@ -206,6 +215,9 @@ int main(int argc, char** argv) {
     else if (k == "--cutbacks") o.cutbacks = std::stoi(v);
     else if (k == "--refactor-above") o.refactorAbove = std::stoi(v);
     else if (k == "--coarse-segments") o.coarseSegments = std::stoi(v);
+    else if (k == "--coarse-rotations") o.coarseRotations = v;
+    else if (k == "--krylov-restart") o.krylovRestart = std::stoi(v);
+    else if (k == "--krylov-max") o.krylovMax = std::stoi(v);
     else if (k == "--pattern-slack") o.patternSlack = std::stod(v);
     else if (k == "--forcing-max") { o.forcingMax.clear(); for (auto& f : split(v)) o.forcingMax.push_back(std::stod(f)); }
     else if (k == "--max-iterations") o.maxIterations = std::stoi(v);

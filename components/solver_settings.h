@@ -13,6 +13,11 @@ enum class LinearStrategy { Auto, Direct, Umfpack, Krylov, KrylovLu, Mumps, Schw
 // that one ordering for both.
 enum class Ordering { Auto, Amd, Metis };
 
+// Whether the Schwarz coarse level carries the sections' rotations beside the translations
+// (systems/schwarz_preconditioner.h): Auto keeps them unless A_c's factorisation would cost more
+// than kRotationsUpToFlopsPerNonzero flops per non-zero of K (decided once per increment).
+enum class CoarseRotations { Auto, On, Off };
+
 struct KrylovSettings {
   double tolerance = 1e-8;   // |K x - b| / |b| asked of every solve (dimensionless; LU reaches
                              // 1e-9 on the yarn tangents, docs/RESULTS.md)
@@ -23,6 +28,7 @@ struct KrylovSettings {
                              // relative accuracy, the preconditioner of GMRES (dimensionless)
   int coarseSegments = 8;    // Schwarz strategy: hat functions per fibre of its coarse level
                              // over this many pieces of the node index (>= 1)
+  CoarseRotations coarseRotations = CoarseRotations::Auto;  // Schwarz: the coarse rotations
   double patternSlack = 1.5; // the exact factorisations and the Krylov strategies see K on a
                              // pattern that holds its non-zeros and at most this many times as
                              // many entries (systems/nonzero_pattern.h; dimensionless, >= 1);

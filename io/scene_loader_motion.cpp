@@ -226,7 +226,7 @@ StabilisationDef readStabilisation(const Json& j, const std::string& path) {
 SolverDef readSolver(const Json& j, const std::string& path) {
   const Fields f(j, path, {"strategy", "ordering", "krylov_tolerance", "krylov_restart",
                            "krylov_max_iterations", "refactor_above", "blr_tolerance",
-                           "coarse_segments", "forcing_max", "pattern_slack",
+                           "coarse_segments", "coarse_rotations", "forcing_max", "pattern_slack",
                            "cycle_damping"});
   SolverDef s;
   s.strategy = f.choice("strategy",
@@ -244,6 +244,10 @@ SolverDef readSolver(const Json& j, const std::string& path) {
   s.krylov.refactorAbove = f.integer("refactor_above", s.krylov.refactorAbove);
   s.krylov.blrTolerance = f.number("blr_tolerance", s.krylov.blrTolerance);
   s.krylov.coarseSegments = f.integer("coarse_segments", s.krylov.coarseSegments);
+  s.krylov.coarseRotations = f.choice("coarse_rotations",
+                                      {{"auto", CoarseRotations::Auto}, {"on", CoarseRotations::On},
+                                       {"off", CoarseRotations::Off}},
+                                      s.krylov.coarseRotations);
   s.krylov.forcingMax = f.number("forcing_max", s.krylov.forcingMax);
   s.krylov.patternSlack = f.number("pattern_slack", s.krylov.patternSlack);
   s.cycleDamping = f.boolean("cycle_damping", s.cycleDamping);

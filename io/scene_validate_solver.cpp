@@ -27,6 +27,10 @@ void validateSolver(const SolverDef& s) {
       s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
     fail("solver.coarse_segments", std::string("applies to the strategies schwarz and auto, not to '") +
                                        strategyName(s.strategy) + "'");
+  if (s.krylov.coarseRotations != KrylovSettings{}.coarseRotations &&
+      s.strategy != LinearStrategy::Schwarz && s.strategy != LinearStrategy::Auto)
+    fail("solver.coarse_rotations", std::string("applies to the strategies schwarz and auto, not to '") +
+                                         strategyName(s.strategy) + "'");
   const double slack = s.krylov.patternSlack;
   if (!(slack == 0 || (slack >= 1 && slack <= 100)))
     fail("solver.pattern_slack", "must be 0 (off) or in [1, 100], got " + num(slack));

@@ -424,7 +424,7 @@ bool LinearSolver::Impl::schwarzFactorise(const LinearSystem& ls, const LinearSy
   span.items(ls.freeCount);
   const auto t0 = std::chrono::steady_clock::now();
   std::string why;
-  const bool built = schwarz.build(ls, *fibres, krylov.coarseSegments, why);
+  const bool built = schwarz.build(ls, *fibres, krylov.coarseSegments, why, krylov.coarseRotations);
   stats.factorise += seconds(t0);
   ++stats.factorisations;
   stats.schwarz += schwarz.takeTimes();
@@ -584,6 +584,7 @@ void LinearSolver::resetStats() { impl_->stats = LinearSolveStats{}; }
 void LinearSolver::forgetPattern() {
   impl_->pattern.storedRevision = -1;
   impl_->autoChoice = -1;
+  impl_->schwarz.forgetChoice();
 }
 
 }  // namespace fibra

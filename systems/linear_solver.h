@@ -26,7 +26,8 @@
 //   of memory after one retry with more workspace) return false with MUMPS's code.
 // - Schwarz: GMRES on the true K, right-preconditioned by the two-level fibre preconditioner of
 //   systems/schwarz_preconditioner.h (banded LU per fibre, a coarse level of per-fibre segment
-//   translations and rotations, KrylovSettings::coarseSegments), built afresh at every call to
+//   translations and rotations, KrylovSettings::coarseSegments and coarseRotations, the latter's
+//   Auto choice made again after forgetPattern), built afresh at every call to
 //   factorise: on the contact tangents neither a factor nor this preconditioner survives a
 //   Newton iteration (docs/RESULTS.md "Fibre-block preconditioners"). Needs the fibres
 //   (setFibres). A preconditioner that cannot be built (a singular block) or a GMRES that misses

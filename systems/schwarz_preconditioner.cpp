@@ -1,9 +1,9 @@
 #include "systems/schwarz_preconditioner.h"
 
 #include "core/sparse_room.h"
+#include "systems/mumps_solver.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/UmfPackSupport>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
@@ -172,18 +172,24 @@ struct SchwarzPreconditioner::Impl {
   Index perFibre = 0;                // coarse unknowns per fibre (Phi's columns of a fibre)
   std::vector<Columns> kphiParts, acParts;  // per fibre: its columns of K Phi and of A_c
   tbb::enumerable_thread_specific<Scratch> scratch;
-  Eigen::UmfPackLU<SparseMatrix> coarse;
+  mutable MumpsFactor coarse;        // A_c's LU (its solve is not const)
+  Index coarseRevision = 0;          // A_c's pattern revision, for MumpsAnalysis
+  double coarseFlops = 0;            // MUMPS's estimate at the last analysis
   std::vector<int> acOuter, acInner;  // the pattern of Ac that `coarse` analysed
+  int rotationsChosen = -1;          // Auto's choice: -1 not made, 0 off, 1 on
+  bool rotations = true;             // the last build's
   std::vector<int> cursor;           // scratch of copyOperator
   mutable SchwarzTimes times;  // apply() adds its own
 
   void copyOperator(const LinearSystem& system);
   const SparseMatrix& K() const { return Kn; }
   bool factoriseBlocks(const FibreStore& fibres, std::string& message);
-  void basis(const FibreStore& fibres, int segments);
+  void basis(const FibreStore& fibres, int segments, bool withRotations);
   void coarseColumns(Index f, Index first, Index n, Scratch& s);
   void coarseMatrix();
-  bool factoriseCoarse(std::string& message);
+  bool analyseCoarse(std::string& message);
+  bool coarseLevel(const FibreStore& fibres, int segments, CoarseRotations wanted,
+                   std::string& message);
   void applyBlocks(Eigen::VectorXd& y) const;
 };
 
@@ -230,8 +236,10 @@ bool SchwarzPreconditioner::Impl::factoriseBlocks(const FibreStore& fibres, std:
 // Phi of the header, row by row (an equation's row: per hat c over its node, the translation
 // column of its x0 component, or the two rotation columns whose e_i x g_a has its component),
 // without zeros; per fibre, hats over `segments` pieces of its node index (at most its nodes
-// less one), times the three translations of x0 and the three rotations of the directors.
-void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) {
+// less one), times the three translations of x0 and (withRotations) the three rotations of the
+// directors.
+void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments,
+                                        bool withRotations) {
   const Index per = perFibre = Index(segments + 1) * 6, n = ls->freeCount;
   const Index nc = fibres.fibres() * per;
   // Per node at most 2 hats x (3 translation + 6 x 2 rotation entries).
@@ -257,7 +265,7 @@ void SchwarzPreconditioner::Impl::basis(const FibreStore& fibres, int segments) 
       int count = 0;
       if (d < 3) {
         entries[count++] = {int(column + d), phi};
-      } else {  // component r of director a: (e_i x g_a)_r for the rotations i != r
+      } else if (withRotations) {  // component r of director a: (e_i x g_a)_r for the rotations i != r
         const Vec3 g = d < 6 ? g1Of(fibres.q, node) : g2Of(fibres.q, node);
         const int r = (d - 3) % 3;
         for (int i = 0; i < 3; ++i) {
@@ -316,26 +324,47 @@ void SchwarzPreconditioner::Impl::coarseMatrix() {
   joinColumns(acParts, Phi.cols(), perFibre, &emptyColumn, Ac);
 }
 
-// A_c's LU; UMFPACK's pattern analysis is redone only when A_c's pattern changes.
-bool SchwarzPreconditioner::Impl::factoriseCoarse(std::string& message) {
-  auto t0 = std::chrono::steady_clock::now();
-  coarseMatrix();
-  times.coarseMatrix += since(t0);
+// A_c's pattern analysis by MUMPS, redone only when A_c's pattern changes.
+bool SchwarzPreconditioner::Impl::analyseCoarse(std::string& message) {
   const int* outer = Ac.outerIndexPtr();
   const int* inner = Ac.innerIndexPtr();
   const size_t cols = size_t(Ac.cols()), nnz = size_t(Ac.nonZeros());
-  if (acOuter.size() != cols + 1 || acInner.size() != nnz ||
-      !std::equal(outer, outer + cols + 1, acOuter.begin()) ||
-      !std::equal(inner, inner + nnz, acInner.begin())) {
-    coarse.umfpackControl()(UMFPACK_IRSTEP) = 0;  // a preconditioner: no iterative refinement
-    t0 = std::chrono::steady_clock::now();
-    coarse.analyzePattern(Ac);
-    times.coarseAnalyse += since(t0);
-    acOuter.assign(outer, outer + cols + 1), acInner.assign(inner, inner + nnz);
+  if (acOuter.size() == cols + 1 && acInner.size() == nnz &&
+      std::equal(outer, outer + cols + 1, acOuter.begin()) &&
+      std::equal(inner, inner + nnz, acInner.begin()))
+    return true;
+  const auto t0 = std::chrono::steady_clock::now();
+  MumpsAnalysis how;
+  how.ordering = Ordering::Metis;
+  how.revision = ++coarseRevision;
+  acOuter.clear();  // analysed nothing, should MUMPS fail
+  if (!coarse.analyse(Ac, how, message)) return false;
+  times.coarseAnalyse += since(t0);
+  coarseFlops = coarse.estimatedFlops();
+  acOuter.assign(outer, outer + cols + 1), acInner.assign(inner, inner + nnz);
+  return true;
+}
+
+// Phi, A_c and A_c's LU, with the rotations as `wanted` (Auto: the header's rule, the choice
+// made at the first build after forgetChoice).
+bool SchwarzPreconditioner::Impl::coarseLevel(const FibreStore& fibres, int segments,
+                                              CoarseRotations wanted, std::string& message) {
+  using enum CoarseRotations;
+  const auto form = [&](bool withRotations) {
+    const auto t0 = std::chrono::steady_clock::now();
+    rotations = withRotations;
+    basis(fibres, segments, withRotations);
+    coarseMatrix();
+    times.coarseMatrix += since(t0);
+    return analyseCoarse(message);
+  };
+  if (!form(wanted == On || (wanted == Auto && rotationsChosen != 0))) return false;
+  if (wanted == Auto && rotationsChosen < 0) {
+    rotationsChosen = coarseFlops <= kRotationsUpToFlopsPerNonzero * double(Kn.nonZeros());
+    if (!rotationsChosen && !form(false)) return false;
   }
-  coarse.factorize(Ac);
-  if (coarse.info() != Eigen::Success) {
-    message = "Schwarz: the coarse matrix is singular";
+  if (!coarse.factorise(Ac, message)) {
+    message = "Schwarz: the coarse matrix: " + message;
     return false;
   }
   return true;
@@ -367,7 +396,7 @@ void SchwarzPreconditioner::Impl::copyOperator(const LinearSystem& system) {
 }
 
 bool SchwarzPreconditioner::build(const LinearSystem& ls, const FibreStore& fibres, int segments,
-                                  std::string& message) {
+                                  std::string& message, CoarseRotations rotations) {
   Impl& m = *impl_;
   m.copyOperator(ls);
   auto t0 = std::chrono::steady_clock::now();
@@ -375,17 +404,21 @@ bool SchwarzPreconditioner::build(const LinearSystem& ls, const FibreStore& fibr
   m.times.local += since(t0);
   if (!blocks) return false;
   t0 = std::chrono::steady_clock::now();
-  m.basis(fibres, std::max(1, segments));
-  m.times.coarseMatrix += since(t0);
-  const bool coarse = m.factoriseCoarse(message);
+  const bool coarse = m.coarseLevel(fibres, std::max(1, segments), rotations, message);
   m.times.coarse += since(t0);
+  ++m.times.builds, m.times.withoutRotations += !m.rotations;
   return coarse;
 }
+
+void SchwarzPreconditioner::forgetChoice() { impl_->rotationsChosen = -1; }
+bool SchwarzPreconditioner::rotations() const { return impl_->rotations; }
+double SchwarzPreconditioner::coarseFlops() const { return impl_->coarseFlops; }
 
 void SchwarzPreconditioner::apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const {
   const Impl& m = *impl_;
   auto t0 = std::chrono::steady_clock::now();
-  const Eigen::VectorXd z = m.coarse.solve(Eigen::VectorXd(m.Phi.transpose() * v));
+  Eigen::VectorXd z = m.Phi.transpose() * v;
+  m.coarse.solve(z);
   auto t1 = std::chrono::steady_clock::now();
   y.noalias() = v - m.KPhi * z;  // K y_c with y_c = Phi z
   auto t2 = std::chrono::steady_clock::now();

@@ -15,8 +15,17 @@
 //     pieces (c = 0..segments, phi_c(k) = max(0, 1 - |k segments / (n - 1) - c|); on a fibre of
 //     n <= segments nodes, n - 1 pieces and the hats beyond empty), six columns:
 //     the translations dx0 = e_i phi_c and the rotations of the section dg_a = (e_i x g_a) phi_c
-//     (i = 1..3); A_c = Phi^T K Phi, LU by UMFPACK (its pattern analysed again whenever A_c's
-//     non-zeros move).
+//     (i = 1..3), the rotations' columns left empty when they are off; A_c = Phi^T K Phi, LU by
+//     MUMPS (sequential, METIS nested dissection; its pattern analysed again whenever A_c's
+//     non-zeros move). An empty column of Phi (DOFs held, rotations off, hats beyond the node
+//     count) puts 1 on A_c's diagonal.
+//     Rotations (CoarseRotations): Auto keeps them unless MUMPS's analysis estimates A_c's
+//     factorisation at more than kRotationsUpToFlopsPerNonzero flops per non-zero of K; the
+//     choice is made at the first build after forgetChoice() (each increment) and kept until
+//     the next. Measured (docs/RESULTS.md "The fabric's coarse level"): on the 480-fibre fabric
+//     A_c with rotations costs 9.3e10 flops (1 200 per non-zero of K) and the rotations save no
+//     GMRES iteration; on a 37-fibre bundle they cut GMRES iterations 3.5x for a cheap A_c; the
+//     250-fibre yarn's A_c costs 3e8-1e9 flops (under 300 per non-zero).
 //     K Phi and A_c are formed fibre by fibre from Phi's rows (a fibre's columns of Phi have
 //     its own equations for rows): (K Phi)(:, l) = sum_j K(:, j) Phi(j, l) over the fibre's
 //     equations j, A_c(:, l) = sum_i Phi(i, :)^T (K Phi)(i, l), in sparse accumulators kept
@@ -40,16 +49,23 @@
 // order by one thread (its accumulator's, whichever thread that is). The coarse LU, its solves and the products K v
 // are sequential (a parallel product by rows was measured: no gain on 2 threads once the copy of
 // K by rows is paid, docs/RESULTS.md "Inexact Newton").
-// Errors: build() returns false with a message when a fibre block or A_c is singular.
+// Errors: build() returns false with a message when a fibre block is singular or MUMPS fails on
+// A_c (singular, out of memory).
 #pragma once
 
 #include "components/fibres.h"
 #include "components/linear_system.h"
+#include "components/solver_settings.h"
 
 #include <memory>
 #include <string>
 
 namespace fibra {
+
+// Auto's rule for the coarse rotations (header): kept while MUMPS estimates A_c's factorisation
+// at no more than this many flops per non-zero of K (the 250-fibre yarn: under 300; the 480-fibre
+// fabric: 1 200).
+inline constexpr double kRotationsUpToFlopsPerNonzero = 600;
 
 // Seconds spent by the preconditioner, accumulated until taken (takeTimes).
 struct SchwarzTimes {
@@ -60,7 +76,9 @@ struct SchwarzTimes {
   int applications = 0;
   double coarseSolve = 0, product = 0, blockSolve = 0;
   double operatorProduct = 0;
+  int builds = 0, withoutRotations = 0;  // builds, and those whose coarse level had no rotations
   SchwarzTimes& operator+=(const SchwarzTimes& o) {
+    builds += o.builds, withoutRotations += o.withoutRotations;
     local += o.local, coarse += o.coarse, coarseMatrix += o.coarseMatrix;
     coarseAnalyse += o.coarseAnalyse, applications += o.applications;
     coarseSolve += o.coarseSolve, product += o.product, blockSolve += o.blockSolve;
@@ -78,7 +96,15 @@ class SchwarzPreconditioner {
 
   // Builds both levels from ls.K and the fibres' current state; segments >= 1. Keeps a pointer
   // to ls (its K is used by apply()): it must stay alive and unchanged until the next build.
-  bool build(const LinearSystem& ls, const FibreStore& fibres, int segments, std::string& message);
+  // rotations: the coarse rotations (Auto: by the rule of the header).
+  bool build(const LinearSystem& ls, const FibreStore& fibres, int segments, std::string& message,
+             CoarseRotations rotations = CoarseRotations::On);
+  // Forgets Auto's choice of the coarse rotations: the next build makes it again.
+  void forgetChoice();
+  // Whether the last build's coarse level carried the rotations, and MUMPS's estimate of the
+  // flops of A_c's factorisation at its last analysis (with the rotations, where Auto chose).
+  bool rotations() const;
+  double coarseFlops() const;
   // y = M^-1 v (free equations).
   void apply(const Eigen::VectorXd& v, Eigen::VectorXd& y) const;
   // y = K v with the K of the last build (full or upper-triangle storage).

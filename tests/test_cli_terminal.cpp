@@ -255,7 +255,7 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
   CHECK(r.output.find("  linear solver: auto (direct below 7000 free equations, from there mumps, "
                       "or schwarz where MUMPS's analysis estimates >= 500 flops per non-zero), "
                       "ordering auto, on K's non-zeros (pattern slack 1.5), schwarz's coarse level "
-                      "of 8 segments per fibre, GMRES to 1e-08 (restart 40, <= 200 "
+                      "of 8 segments per fibre, rotations auto, GMRES to 1e-08 (restart 40, <= 200 "
                       "iterations)\n") != std::string::npos);
   CHECK(r.output.find("crossings follow") == std::string::npos);
   CHECK(r.output.find(", normal forces on facing particles (friction on material ones)\n") !=

@@ -355,6 +355,14 @@ TEST_CASE("the scene's solver section sets the strategy and the Krylov settings"
   CHECK(error(R"({"strategy": "mumps", "coarse_segments": 4})") ==
         "s.json: solver.coarse_segments: applies to the strategies schwarz and auto, not to 'mumps'");
   CHECK(loadSceneFromString(scene(R"({"coarse_segments": 15})"), "s.json").solver.krylov.coarseSegments == 15);
+  // the coarse rotations: auto by default, on or off, and only where a coarse level is built
+  CHECK(loadSceneFromString(scene("{}"), "s.json").solver.krylov.coarseRotations == CoarseRotations::Auto);
+  CHECK(loadSceneFromString(scene(R"({"strategy": "schwarz", "coarse_rotations": "off"})"), "s.json")
+            .solver.krylov.coarseRotations == CoarseRotations::Off);
+  CHECK(error(R"({"strategy": "schwarz", "coarse_rotations": "some"})") ==
+        "s.json: solver.coarse_rotations: unknown value \"some\" (expected one of: auto, on, off)");
+  CHECK(error(R"({"strategy": "umfpack", "coarse_rotations": "on"})") ==
+        "s.json: solver.coarse_rotations: applies to the strategies schwarz and auto, not to 'umfpack'");
   // the non-zero pattern's slack: 0 (off) or in [1, 100]
   CHECK(loadSceneFromString(scene("{}"), "s.json").solver.krylov.patternSlack == 1.5);
   CHECK(loadSceneFromString(scene(R"({"pattern_slack": 0})"), "s.json").solver.krylov.patternSlack == 0);

@@ -70,9 +70,9 @@ TEST_CASE("the Schwarz strategy: its preconditioner alone, bitwise across thread
 // The header's two levels written out densely and independently of the class: Phi from its
 // hats and rigid motions, A_c = Phi^T K Phi (1 on the diagonal of an empty column), each fibre's
 // block restricted to its band and solved by a dense LU; y = y_c + B^-1 (v - K y_c),
-// y_c = Phi A_c^-1 Phi^T v.
+// y_c = Phi A_c^-1 Phi^T v. Without rotations their columns of Phi stay empty.
 Eigen::VectorXd denseSchwarz(const LinearSystem& ls, const FibreStore& fs, int segments,
-                             const Eigen::VectorXd& v) {
+                             const Eigen::VectorXd& v, bool rotations = true) {
   const Eigen::MatrixXd K(ls.symmetric ? SparseMatrix(ls.K.selfadjointView<Eigen::Upper>()) : ls.K);
   const Index per = 6 * (segments + 1), n = ls.freeCount;
   Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(n, fs.fibres() * per);
@@ -86,7 +86,7 @@ Eigen::VectorXd denseSchwarz(const LinearSystem& ls, const FibreStore& fs, int s
         for (int i = 0; i < 3; ++i) {
           const Index col = f * per + 6 * c;
           if (eq(i) >= 0) Phi(eq(i), col + i) = phi;
-          for (int a = 0; a < 2; ++a) {
+          for (int a = 0; a < 2 && rotations; ++a) {
             const Vec3 g = fs.q.segment<3>(kNodeDofs * node + 3 + 3 * a);
             const Vec3 dg = Vec3::Unit(i).cross(g) * phi;
             for (int r = 0; r < 3; ++r)
@@ -135,8 +135,47 @@ TEST_CASE("the Schwarz preconditioner applies the two levels of its header (dens
       const Eigen::VectorXd ref = denseSchwarz(ls, w->fibres, segments, v);
       MESSAGE("relative difference " << (y - ref).norm() / ref.norm());
       CHECK((y - ref).norm() <= 1e-9 * ref.norm());
+      // the coarse level without the rotations: their columns empty
+      REQUIRE(p.build(ls, w->fibres, segments, message, CoarseRotations::Off));
+      CHECK_FALSE(p.rotations());
+      p.apply(v, y);
+      const Eigen::VectorXd translations = denseSchwarz(ls, w->fibres, segments, v, false);
+      CHECK((y - translations).norm() <= 1e-9 * translations.norm());
+      // the rotations change y by far more than the tolerance above
+      CHECK((translations - ref).norm() > 1e-6 * ref.norm());
     }
   }
+}
+
+TEST_CASE("the Schwarz coarse rotations: auto keeps them where A_c is cheap, off still solves") {
+  auto w = squeezedBundle(0.1);
+  const LinearSystem& ls = w->system;
+  const Eigen::VectorXd v = randomVector(ls.freeCount, 9);
+  SchwarzPreconditioner on, automatic;
+  std::string message;
+  REQUIRE(on.build(ls, w->fibres, 8, message, CoarseRotations::On));
+  REQUIRE(automatic.build(ls, w->fibres, 8, message, CoarseRotations::Auto));
+  // the rule of the header, with MUMPS's own estimate: far below the threshold on 7 fibres
+  CHECK(automatic.coarseFlops() > 0);
+  const double perNonzero = automatic.coarseFlops() / double(ls.K.nonZeros());
+  MESSAGE("A_c: " << perNonzero << " flops per stored entry of K");
+  CHECK(perNonzero < kRotationsUpToFlopsPerNonzero);
+  CHECK(automatic.rotations());
+  Eigen::VectorXd a, b;
+  on.apply(v, a), automatic.apply(v, b);
+  CHECK(a == b);
+  // The rotations help GMRES here; without them it still solves, with more iterations.
+  LinearSolver with, without;
+  with.setKrylov({.coarseRotations = CoarseRotations::On});
+  without.setKrylov({.coarseRotations = CoarseRotations::Off});
+  CHECK(solveWith(LinearStrategy::Schwarz, ls, v, with, &w->fibres) <= KrylovSettings{}.tolerance);
+  CHECK(solveWith(LinearStrategy::Schwarz, ls, v, without, &w->fibres) <= KrylovSettings{}.tolerance);
+  CHECK(with.stats().fallbacks + without.stats().fallbacks == 0);
+  CHECK(without.stats().schwarz.withoutRotations == without.stats().schwarz.builds);
+  CHECK(with.stats().schwarz.withoutRotations == 0);
+  MESSAGE("GMRES iterations with rotations " << with.stats().krylovIterations << ", without "
+                                             << without.stats().krylovIterations);
+  CHECK(with.stats().krylovIterations < without.stats().krylovIterations);
 }
 
 TEST_CASE("the Schwarz preconditioner ignores K's explicit zeros and times its applications") {
