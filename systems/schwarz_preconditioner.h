@@ -25,7 +25,7 @@
 //     the next. Measured (docs/RESULTS.md "The fabric's coarse level"): on the 480-fibre fabric
 //     A_c with rotations costs 9.3e10 flops (1 200 per non-zero of K) and the rotations save no
 //     GMRES iteration; on a 37-fibre bundle they cut GMRES iterations 3.5x for a cheap A_c; the
-//     250-fibre yarn's A_c costs 3e8-1e9 flops (under 300 per non-zero).
+//     250-fibre yarn's A_c costs 3e8-1e9 flops, and Auto keeps the rotations there.
 //     K Phi and A_c are formed fibre by fibre from Phi's rows (a fibre's columns of Phi have
 //     its own equations for rows): (K Phi)(:, l) = sum_j K(:, j) Phi(j, l) over the fibre's
 //     equations j, A_c(:, l) = sum_i Phi(i, :)^T (K Phi)(i, l), in sparse accumulators kept
@@ -63,8 +63,8 @@
 namespace fibra {
 
 // Auto's rule for the coarse rotations (header): kept while MUMPS estimates A_c's factorisation
-// at no more than this many flops per non-zero of K (the 250-fibre yarn: under 300; the 480-fibre
-// fabric: 1 200).
+// at no more than this many flops per non-zero of K (the 250-fibre yarn: kept, A_c at 3e8-1e9
+// flops; the 480-fibre fabric: 1 200, left out).
 inline constexpr double kRotationsUpToFlopsPerNonzero = 600;
 
 // Seconds spent by the preconditioner, accumulated until taken (takeTimes).
