@@ -404,7 +404,11 @@ bool SchwarzPreconditioner::build(const LinearSystem& ls, const FibreStore& fibr
   m.times.local += since(t0);
   if (!blocks) return false;
   t0 = std::chrono::steady_clock::now();
-  const bool coarse = m.coarseLevel(fibres, std::max(1, segments), rotations, message);
+  // hats beyond every fibre's node intervals would be empty columns, unit rows of A_c only
+  Index intervals = 1;
+  for (Index f = 0; f < fibres.fibres(); ++f) intervals = std::max(intervals, fibres.nodeCount[f] - 1);
+  const int pieces = int(std::clamp<Index>(segments, 1, intervals));
+  const bool coarse = m.coarseLevel(fibres, pieces, rotations, message);
   m.times.coarse += since(t0);
   ++m.times.builds, m.times.withoutRotations += !m.rotations;
   return coarse;

@@ -13,7 +13,8 @@
 //     couplings outside it (other fibres, self-contact) act only through the products with K.
 //   coarse level: Phi, per fibre and per hat function phi_c of the node index k over `segments`
 //     pieces (c = 0..segments, phi_c(k) = max(0, 1 - |k segments / (n - 1) - c|); on a fibre of
-//     n <= segments nodes, n - 1 pieces and the hats beyond empty), six columns:
+//     n <= segments nodes, n - 1 pieces and the hats beyond empty; `segments` above every
+//     fibre's node intervals is taken as the largest count of them), six columns:
 //     the translations dx0 = e_i phi_c and the rotations of the section dg_a = (e_i x g_a) phi_c
 //     (i = 1..3), the rotations' columns left empty when they are off; A_c = Phi^T K Phi, LU by
 //     MUMPS (sequential, METIS nested dissection; its pattern analysed again whenever A_c's
