@@ -17,10 +17,13 @@ namespace fibra::linear_fixtures {
 
 // A 7-fibre bundle after its first converged squeeze increment, with the tangent Newton last
 // assembled (at the converged state).
-inline std::unique_ptr<WorldState> squeezedBundle(double mu, NormalUpdate update = NormalUpdate::Newton) {
+// firstElements > 0: the first fibre (the centre one) gets that many elements, the others 10.
+inline std::unique_ptr<WorldState> squeezedBundle(double mu, NormalUpdate update = NormalUpdate::Newton,
+                                                  int firstElements = 0) {
   auto w = std::make_unique<WorldState>();
   w->scene = scenes::bundle(1, 10, 0.01, 5e-4, mu);
   w->scene.contact.normalUpdate = update;
+  if (firstElements > 0) w->scene.fibres[0].elements = firstElements;
   w->def.threads = 1;
   buildWorld(*w);
   REQUIRE(advance(*w).status == StepStatus::Converged);

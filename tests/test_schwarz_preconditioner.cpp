@@ -147,6 +147,28 @@ TEST_CASE("the Schwarz preconditioner applies the two levels of its header (dens
   }
 }
 
+TEST_CASE("the Schwarz coarse level on fibres of different lengths (dense reference)") {
+  // The centre fibre has 3 elements (7 nodes), the others 10 (21 nodes): 50 pieces are 20 for the
+  // long fibres and 6 for the short one, whose hats beyond stay empty.
+  auto w = squeezedBundle(0.1, NormalUpdate::Newton, 3);
+  REQUIRE(w->fibres.nodeCount[0] == 7);
+  REQUIRE(w->fibres.nodeCount[1] == 21);
+  const LinearSystem& ls = w->system;
+  const Eigen::VectorXd v = randomVector(ls.freeCount, 3);
+  for (int segments : {4, 10, 50}) {
+    CAPTURE(segments);
+    for (CoarseRotations r : {CoarseRotations::On, CoarseRotations::Off}) {
+      SchwarzPreconditioner p;
+      std::string message;
+      REQUIRE(p.build(ls, w->fibres, segments, message, r));
+      Eigen::VectorXd y;
+      p.apply(v, y);
+      const Eigen::VectorXd ref = denseSchwarz(ls, w->fibres, segments, v, r == CoarseRotations::On);
+      CHECK((y - ref).norm() <= 1e-9 * ref.norm());
+    }
+  }
+}
+
 TEST_CASE("the Schwarz coarse rotations: auto keeps them where A_c is cheap, off still solves") {
   auto w = squeezedBundle(0.1);
   const LinearSystem& ls = w->system;
