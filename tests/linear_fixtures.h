@@ -57,4 +57,15 @@ inline double solveWith(LinearStrategy s, const LinearSystem& ls, const Eigen::V
   return residualOf(ls, x, b);
 }
 
+// ls with every entry (i, i + 40) of K stored as an explicit zero, on top of K's own entries.
+inline LinearSystem withExplicitZeros(const LinearSystem& ls) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (Index j = 0; j < ls.K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(ls.K, j); it; ++it) t.emplace_back(it.row(), j, it.value());
+  for (Index i = 0; i + 40 < ls.freeCount; ++i) t.emplace_back(i, i + 40, 0.0);
+  LinearSystem padded = ls;
+  padded.K.setFromTriplets(t.begin(), t.end());
+  return padded;
+}
+
 }  // namespace fibra::linear_fixtures

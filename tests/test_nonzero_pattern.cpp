@@ -7,15 +7,17 @@
 // exact strategy), the pattern's revision drives the analyses, and slack 0 solves the stored
 // pattern to the same accuracy.
 #include "bench/contact_scenes.h"
+#include "linear_fixtures.h"
 #include "engine/world_state.h"
 #include "systems/linear_solver.h"
 #include "systems/nonzero_pattern.h"
 
 #include <doctest/doctest.h>
 
-#include <random>
 
 using namespace fibra;
+using fibra::linear_fixtures::randomVector;
+using fibra::linear_fixtures::withExplicitZeros;
 
 namespace {
 
@@ -39,14 +41,6 @@ LinearSystem bandSystem() {
 
 // The stored value of K(i, j) (which must be stored).
 double& entry(SparseMatrix& K, int i, int j) { return K.coeffRef(i, j); }
-
-Eigen::VectorXd randomVector(Index n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  Eigen::VectorXd b(n);
-  for (Index i = 0; i < n; ++i) b(i) = u(rng);
-  return b;
-}
 
 }  // namespace
 
@@ -164,12 +158,7 @@ TEST_CASE("the exact strategies factorise a K padded with explicit zeros as K it
   REQUIRE(advance(*w).status == StepStatus::Converged);
   const LinearSystem& ls = w->system;
   // every entry (i, i + 40) stored with value 0 on top of the tangent's own zeros
-  std::vector<Eigen::Triplet<double>> t;
-  for (Index j = 0; j < ls.K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(ls.K, j); it; ++it) t.emplace_back(it.row(), j, it.value());
-  for (Index i = 0; i + 40 < ls.freeCount; ++i) t.emplace_back(i, i + 40, 0.0);
-  LinearSystem padded = ls;
-  padded.K.setFromTriplets(t.begin(), t.end());
+  LinearSystem padded = withExplicitZeros(ls);
   ++padded.revision;
   REQUIRE(padded.K.nonZeros() > ls.K.nonZeros() + ls.freeCount / 2);
   const Eigen::VectorXd b = randomVector(ls.freeCount, 11);

@@ -204,12 +204,7 @@ TEST_CASE("the Schwarz preconditioner ignores K's explicit zeros and times its a
   auto w = squeezedBundle(0.1);
   const LinearSystem& ls = w->system;
   // explicit zeros on top of the tangent's own: every entry (i, i + 40) stored with value 0
-  std::vector<Eigen::Triplet<double>> t;
-  for (Index j = 0; j < ls.K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(ls.K, j); it; ++it) t.emplace_back(it.row(), j, it.value());
-  for (Index i = 0; i + 40 < ls.freeCount; ++i) t.emplace_back(i, i + 40, 0.0);
-  LinearSystem padded = ls;
-  padded.K.setFromTriplets(t.begin(), t.end());
+  LinearSystem padded = withExplicitZeros(ls);
   Index zeros = 0;
   for (Index k = 0; k < padded.K.nonZeros(); ++k) zeros += padded.K.valuePtr()[k] == 0;
   REQUIRE(zeros > ls.freeCount / 2);
