@@ -1,5 +1,6 @@
-// The woven-fabric generator: spec reading (pattern, warp and weft), the flat layout, the level
-// tables and the scene entries they expand into (the formulas are in fabric_generator.h).
+// The woven-fabric generator: spec reading (pattern, warp and weft, start), the flat layout, the
+// level tables and the scene entries they expand into, flat or crimped (io/fabric_crimp.cpp; the
+// formulas are in fabric_generator.h).
 #include "io/fabric_generator.h"
 
 #include "io/generator_fields.h"
@@ -128,7 +129,8 @@ WeavePattern satinWeave(int repeat, int step) {
 }
 
 FabricDef readFabric(const Json& spec, const std::string& path) {
-  const Fields f(spec, path, {"type", "name", "pattern", "warp", "weft"}, "a woven_fabric generator");
+  const Fields f(spec, path, {"type", "name", "pattern", "warp", "weft", "start"},
+                 "a woven_fabric generator");
   FabricDef fab;
   fab.name = f.string("name");
   checkName(f, fab.name);
@@ -137,6 +139,9 @@ FabricDef readFabric(const Json& spec, const std::string& path) {
   fab.weft = readDirection(f, "weft");
   fillLength(f, "warp", fab.warp, fab.weft);
   fillLength(f, "weft", fab.weft, fab.warp);
+  fab.start = f.choice("start", {{"flat", FabricStart::Flat}, {"crimped", FabricStart::Crimped}},
+                       FabricStart::Flat);
+  if (fab.start == FabricStart::Crimped) checkCrimp(fab, path);
   return fab;
 }
 
@@ -179,13 +184,30 @@ std::string yarnName(const FabricDef& f, bool warp, int c) {
 
 Json vec(const Vec3& v) { return Json::array({v(0), v(1), v(2)}); }
 
+Json levelsJson(const std::vector<std::array<double, 2>>& pieces) {
+  Json levels = Json::array();
+  for (const auto& piece : pieces) levels.push_back({piece[0], piece[1]});
+  return levels;
+}
+
+// The flat start's line, or the crimped start's polyline; director +z at the start either way.
+Json geometryJson(const std::string& type, const std::vector<Vec3>& points) {
+  Json pts = Json::array();
+  for (const Vec3& p : points) pts.push_back(vec(p));
+  return {{"type", type}, {"points", pts}, {"director", vec(Vec3::UnitZ())}};
+}
+
 Json fibreJson(const FabricDef& f, bool warp, int c, int k) {
   const WeaveDirection& d = warp ? f.warp : f.weft;
-  const auto ends = fabricFibreEnds(f, warp, c, k);
-  Json levels = 0;
-  if (warp) {
-    levels = Json::array();
-    for (const auto& piece : warpLevels(f, c)) levels.push_back({piece[0], piece[1]});
+  Json levels = 0, geometry;
+  if (f.start == FabricStart::Flat) {
+    const auto ends = fabricFibreEnds(f, warp, c, k);
+    if (warp) levels = levelsJson(warpLevels(f, c));
+    geometry = geometryJson("line", {ends[0], ends[1]});
+  } else {
+    const std::vector<Vec3> points = crimpedCentreline(f, warp, c, k);
+    if (warp) levels = levelsJson(crimpedWarpLevels(f, c, points));
+    geometry = geometryJson("polyline", points);
   }
   return {{"name", yarnName(f, warp, c) + ".f" + std::to_string(k)},
           {"material", d.material},
@@ -194,8 +216,7 @@ Json fibreJson(const FabricDef& f, bool warp, int c, int k) {
           {"order", d.order},
           {"class", f.name + (warp ? ".warp" : ".weft")},
           {"levels", levels},
-          {"geometry", {{"type", "line"}, {"points", {vec(ends[0]), vec(ends[1])}},
-                        {"director", vec(Vec3::UnitZ())}}}};
+          {"geometry", geometry}};
 }
 
 Json unionJson(const std::string& name, const std::vector<std::string>& members) {

@@ -1,5 +1,6 @@
 // The crossings of a reduced woven sample (scripts/fabric_loadings.py: n x n yarns of 3 fibres,
-// yarn axes `spacing` apart, fibres (n + 1) x spacing long, centred on the origin), measured from
+// or `fibres`; yarn axes `spacing` apart, fibres (n + 1) x spacing long, centred on the origin;
+// a crimped fibre's arc length at a crossing taken as its straight one), measured from
 // the nodes alone (tests/centreline_measure.h), not from the contact elements: the largest
 // overlap between fibres of crossing yarns and whether the pattern's over yarn lies above.
 #pragma once
@@ -18,6 +19,7 @@ namespace fibra::test {
 struct WeaveLayout {
   int yarns = 3;         // in each direction
   double spacing = 1.5;  // between yarn axes, mm
+  int fibres = 3;        // per yarn
 };
 
 struct Crossings {
@@ -46,11 +48,11 @@ inline Crossings measureCrossings(const World& w, const WeavePattern& pattern, W
     for (int r = 0; r < l.yarns; ++r) {
       const double sWarp = arc(axis(r)), sWeft = arc(axis(c));
       double zWarp = 0, zWeft = 0;
-      for (int k = 0; k < 3; ++k) {
+      for (int k = 0; k < l.fibres; ++k) {
         const Index I = weaveFibre(w, "warp", c, k), J = weaveFibre(w, "weft", r, k);
-        zWarp += centreline(fs, fs.q, I, sWarp).z() / 3;
-        zWeft += centreline(fs, fs.q, J, sWeft).z() / 3;
-        for (int l2 = 0; l2 < 3; ++l2) {
+        zWarp += centreline(fs, fs.q, I, sWarp).z() / l.fibres;
+        zWeft += centreline(fs, fs.q, J, sWeft).z() / l.fibres;
+        for (int l2 = 0; l2 < l.fibres; ++l2) {
           const Index L = weaveFibre(w, "weft", r, l2);
           const Closest d = closestApproach(fs, fs.q, I, L, sWarp, sWeft);
           m.worstOverlap = std::max(m.worstOverlap, overlapAt(fs, fs.q, I, L, d));
