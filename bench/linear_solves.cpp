@@ -150,10 +150,13 @@ void newton(const Options& o) {
       auto last = std::chrono::steady_clock::now();
       w.def.progress = [&](const Progress& p) {  // one line per Newton iteration
         const LinearSolveStats& st = w.solver.stats();
+        const SchwarzTimes& sz = st.schwarz;  // so far in this increment
         std::printf("    t %.3f it %2d residual %.2e  %.2f s  (factorisations %d, krylov it %d, shift %.0e, "
-                    "resident %.2f GiB)\n", p.time, p.iteration, p.residual, bench::seconds([] {}) +
+                    "resident %.2f GiB; Schwarz so far: build %.2f, K v %.2f, blocks %.2f, coarse solves %.2f, "
+                    "K y_c %.2f s)\n", p.time, p.iteration, p.residual, bench::seconds([] {}) +
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - last).count(),
-                    st.factorisations, st.krylovIterations, st.shift, statusGiB("VmRSS:"));
+                    st.factorisations, st.krylovIterations, st.shift, statusGiB("VmRSS:"),
+                    sz.local + sz.coarse, sz.operatorProduct, sz.blockSolve, sz.coarseSolve, sz.product);
         last = std::chrono::steady_clock::now();
       };
       buildWorld(w);

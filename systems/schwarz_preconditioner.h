@@ -48,8 +48,10 @@
 // the fibre blocks are factorised and applied in parallel, each writing only its own fibre's
 // equations; A_c and K Phi are formed fibre by fibre, each fibre's columns summed in a fixed
 // order by one thread (its accumulator's, whichever thread that is). The coarse LU, its solves and the products K v
-// are sequential (a parallel product by rows was measured: no gain on 2 threads once the copy of
-// K by rows is paid, docs/RESULTS.md "Inexact Newton").
+// are sequential. A parallel product was measured twice and lost: by rows from a copy of K made
+// at each build (bundle37, docs/RESULTS.md "Inexact Newton"), and by ranges of rows of K's own
+// columns on the 480-fibre fabric (0.074 s per product on 2 threads against 0.039 s for the
+// sequential one: the product is bound by memory, and each thread reads every column's indices).
 // Errors: build() returns false with a message when a fibre block is singular or MUMPS fails on
 // A_c (singular, out of memory).
 #pragma once
