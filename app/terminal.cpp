@@ -351,8 +351,8 @@ std::string solverLine(const SceneDef& s) {
                : std::string(", on K's stored pattern");
   const bool schwarz = v.strategy == LinearStrategy::Schwarz || v.strategy == LinearStrategy::Auto;
   if (schwarz)
-    out += format(", schwarz's coarse level of %d segments per fibre, rotations %s",
-                  v.krylov.coarseSegments,
+    out += format(", schwarz's coarse level of %d segment%s per fibre, rotations %s",
+                  v.krylov.coarseSegments, v.krylov.coarseSegments == 1 ? "" : "s",
                   v.krylov.coarseRotations == CoarseRotations::On    ? "on"
                   : v.krylov.coarseRotations == CoarseRotations::Off ? "off"
                                                                      : "auto");

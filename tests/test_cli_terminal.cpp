@@ -258,6 +258,12 @@ TEST_CASE("fibra check and run show the pair rules, classes, contact laws and fo
                       "of 8 segments per fibre, rotations auto, GMRES to 1e-08 (restart 40, <= 200 "
                       "iterations)\n") != std::string::npos);
   CHECK(r.output.find("crossings follow") == std::string::npos);
+  // one coarse segment is said in the singular
+  wide["solver"] = {{"strategy", "schwarz"}, {"coarse_segments", 1}};
+  writeFile(scratch / "one_segment.json", wide.dump());
+  CHECK(runFibra({"check", scratch / "one_segment.json"}, scratch)
+            .output.find("schwarz's coarse level of 1 segment per fibre, rotations auto") !=
+        std::string::npos);
   CHECK(r.output.find(", normal forces on facing particles (friction on material ones)\n") !=
         std::string::npos);  // default
   CHECK(c.output.find("friction tangent symmetrised, element placement paper, normals updated by "
