@@ -12,6 +12,7 @@
 #include "io/scene_loader.h"
 #include "scene_test_util.h"
 #include "weave_crossings.h"
+#include "woven_scene.h"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -38,20 +39,11 @@ constexpr double kR = 0.026, kGap = 0.002, kSpacing = 0.65;  // mm
 constexpr double kTolerance = 1e-4;  // mm
 
 Json crimpedScene(const Json& pattern, int yarns, int perYarn, double spacing) {
-  Json s = Json::parse(R"({
-    "units": "mm-N-MPa",
-    "materials": [{"name": "glass", "young_modulus": 73000, "bending_factor": 0.12}],
-    "generators": [{"type": "woven_fabric", "name": "fab", "start": "crimped"}],
-    "boundary_conditions": [{"type": "clamp", "group": "fab.edge.xmin"},
-                            {"type": "clamp", "group": "fab.edge.ymin"}],
-    "steps": [{"increments": 1}]
-  })");
-  Json& g = s["generators"][0];
-  g["pattern"] = pattern;
-  for (const char* dir : {"warp", "weft"})
-    g[dir] = {{"yarns", yarns},         {"spacing", spacing}, {"fibres_per_yarn", perYarn},
-              {"fibre_radius", kR},     {"gap", kGap},        {"material", "glass"},
-              {"elements", 20}};
+  Json s = wovenScene({{"name", "glass"}, {"young_modulus", 73000}, {"bending_factor", 0.12}}, pattern,
+                      yarns, yarns,
+                      {{"spacing", spacing}, {"fibres_per_yarn", perYarn}, {"fibre_radius", kR},
+                       {"gap", kGap}, {"elements", 20}});
+  s["generators"][0]["start"] = "crimped";
   return s;
 }
 

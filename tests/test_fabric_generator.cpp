@@ -12,6 +12,7 @@
 #include "io/yarn_generator.h"
 #include "scene_test_util.h"
 #include "store_bits.h"
+#include "woven_scene.h"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>
@@ -30,25 +31,9 @@ constexpr double kR = 0.1, kGap = 0.01, kSpacing = 1;  // mm
 
 // A scene with one woven_fabric generator: `warps` x `wefts` yarns of `perYarn` fibres.
 Json fabricScene(const Json& pattern, int warps, int wefts, int perYarn) {
-  Json s = Json::parse(R"({
-    "units": "mm-N-MPa",
-    "materials": [{"name": "polymer", "young_modulus": 4000}],
-    "generators": [{"type": "woven_fabric", "name": "fab"}],
-    "boundary_conditions": [{"type": "clamp", "group": "fab.edge.xmin"},
-                            {"type": "clamp", "group": "fab.edge.ymin"}],
-    "steps": [{"increments": 1}]
-  })");
-  Json& g = s["generators"][0];
-  g["pattern"] = pattern;
-  for (const char* dir : {"warp", "weft"})
-    g[dir] = {{"yarns", std::string(dir) == "warp" ? warps : wefts},
-              {"spacing", kSpacing},
-              {"fibres_per_yarn", perYarn},
-              {"fibre_radius", kR},
-              {"gap", kGap},
-              {"material", "polymer"},
-              {"elements", 6}};
-  return s;
+  return wovenScene({{"name", "polymer"}, {"young_modulus", 4000}}, pattern, warps, wefts,
+                    {{"spacing", kSpacing}, {"fibres_per_yarn", perYarn}, {"fibre_radius", kR},
+                     {"gap", kGap}, {"elements", 6}});
 }
 
 SceneDef load(const Json& j) { return loadSceneFromString(j.dump(), "s.json"); }
